@@ -1,0 +1,24 @@
+// Contact manifold produced by the narrow phase for one pair of shapes.
+#pragma once
+
+#include "core/math.h"
+
+#include <cstdint>
+
+namespace haif {
+
+inline constexpr int kMaxManifoldPoints = 4;
+
+struct ContactPoint {
+  Vec3 position;      ///< world point midway between the two surfaces
+  Vec3 normal;        ///< world unit normal pointing from shape A towards shape B
+  float depth;        ///< penetration depth (> 0 overlapping, < 0 separated by -depth: speculative)
+  uint32_t id;        ///< feature id, stable from step to step while the same features touch
+};
+
+struct Manifold {
+  int count = 0;
+  ContactPoint points[kMaxManifoldPoints];
+};
+
+}  // namespace haif

@@ -1,0 +1,1 @@
+// Renderer lands here (placeholder so the library has a source).

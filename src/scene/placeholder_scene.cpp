@@ -1,0 +1,1 @@
+// Scene loading lands here (placeholder so the library has a source).

@@ -1,0 +1,89 @@
+// Plain description of a scene, as read from a JSON scene file (generators already expanded).
+// The loader fills it and validates it; buildWorld() (scene/build_world.h) turns it into a World.
+#pragma once
+
+#include "collision/shape.h"
+#include "core/math.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace haif {
+
+enum class MotionType : uint8_t { Static = 0, Kinematic, Dynamic };
+
+struct MaterialDesc {
+  std::string name = "default";
+  float friction = 0.6f;
+  float restitution = 0.0f;
+  float density = 1000.0f;  ///< kg/m^3, used when a body gives no mass
+};
+
+struct ShapeDesc {
+  ShapeType type = ShapeType::Box;
+  Vec3 halfExtents = Vec3::Constant(0.5f);  ///< box
+  float radius = 0.5f;                      ///< sphere, capsule
+  float halfHeight = 0.5f;                  ///< capsule
+  Vec3 planeNormal = Vec3::UnitY();         ///< plane
+  float planeOffset = 0.0f;
+  std::vector<Vec3> points;                 ///< convex hull: input points (body frame)
+  std::vector<Vec3> meshVertices;           ///< triangle mesh (inline or loaded from an asset)
+  std::vector<uint32_t> meshIndices;
+  std::string asset;                        ///< asset path as written in the scene file (empty: none)
+  Vec3 assetScale = Vec3::Ones();
+};
+
+struct BodyDesc {
+  std::string name;
+  MotionType motion = MotionType::Dynamic;
+  ShapeDesc shape;
+  Vec3 position = Vec3::Zero();
+  Quat orientation = Quat::Identity();
+  Vec3 linearVelocity = Vec3::Zero();   ///< initial (dynamic) or constant (kinematic) velocity
+  Vec3 angularVelocity = Vec3::Zero();
+  float mass = 0.0f;                    ///< > 0: given mass; 0: from material density
+  uint32_t material = 0;                ///< index into SceneDesc::materials
+  float linearDamping = 0.0f;           ///< 1/s
+  float angularDamping = 0.0f;          ///< 1/s
+  std::string where;                    ///< place in the scene file, e.g. "bodies[3]" or "generators[1] box 17"
+};
+
+/// A box-shaped volume of water: buoyancy and drag act on the submerged part of dynamic bodies.
+struct WaterDesc {
+  Vec3 lo = Vec3::Zero(), hi = Vec3::Zero();  ///< world AABB of the volume (surface at hi.y)
+  float density = 1000.0f;
+  float linearDrag = 1.0f;   ///< 1/s, scaled by submerged fraction
+  float angularDrag = 0.5f;  ///< 1/s
+};
+
+struct SimSettings {
+  float dt = 1.0f / 60.0f;
+  Vec3 gravity = Vec3(0.0f, -9.81f, 0.0f);
+  int iterations = 10;      ///< solver iterations (fixed mode)
+  float omega = 1.0f;       ///< SOR relaxation factor, in [1, 2)
+  float beta = 0.2f;        ///< Baumgarte factor
+  float slop = 0.005f;      ///< allowed penetration (m) before position correction
+  bool sleeping = false;    ///< bodies (islands) at rest go to sleep
+  int frames = 300;         ///< default number of steps for `haif run`
+};
+
+struct CameraDesc {
+  bool given = false;  ///< false: frame the scene automatically
+  Vec3 eye = Vec3(10.0f, 8.0f, 10.0f);
+  Vec3 target = Vec3::Zero();
+  Vec3 up = Vec3::UnitY();
+  float fovYDeg = 45.0f;
+};
+
+struct SceneDesc {
+  std::string name;        ///< scene name (file stem unless the file says otherwise)
+  std::string sourcePath;  ///< file it was read from
+  SimSettings settings;
+  std::vector<MaterialDesc> materials;  ///< materials[0] always exists ("default")
+  std::vector<BodyDesc> bodies;
+  std::vector<WaterDesc> water;
+  CameraDesc camera;
+};
+
+}  // namespace haif

@@ -1,0 +1,1 @@
+// Tools land here (placeholder so the library has a source).
