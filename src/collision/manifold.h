@@ -10,10 +10,10 @@ namespace haif {
 inline constexpr int kMaxManifoldPoints = 4;
 
 struct ContactPoint {
-  Vec3 position;      ///< world point midway between the two surfaces
-  Vec3 normal;        ///< world unit normal pointing from shape A towards shape B
-  float depth;        ///< penetration depth (> 0 overlapping, < 0 separated by -depth: speculative)
-  uint32_t id;        ///< feature id, stable from step to step while the same features touch
+  Vec3 position = Vec3::Zero();  ///< world point midway between the two surfaces
+  Vec3 normal = Vec3::UnitY();   ///< world unit normal pointing from shape A towards shape B
+  float depth = 0.0f;            ///< penetration depth (> 0 overlapping, < 0 separated by -depth: speculative)
+  uint32_t id = 0;               ///< feature id, stable from step to step while the same features touch
 };
 
 struct Manifold {

@@ -1,0 +1,199 @@
+// haif run SCENE: simulate, optionally render frames, write stats.csv and summary.json.
+#include "app/cli.h"
+#include "app/commands.h"
+#include "app/frame_builder.h"
+#include "tools/atomic_file.h"
+#include "tools/run_report.h"
+#include "tools/simulation.h"
+#include "tools/video.h"
+
+#ifdef HAIF_HAVE_RENDER
+#include "render/run_charts.h"
+#endif
+
+#include <tbb/info.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+namespace haif {
+
+namespace {
+
+int fail(const std::string& message, int status = 1) {
+  std::fprintf(stderr, "%s\n", message.c_str());
+  return status;
+}
+
+}  // namespace
+
+int commandRun(int argc, char** argv) {
+  CommandLine cl("run",
+                 {"--frames", "--out", "--threads", "--mode", "--iterations", "--budget-ms", "--width", "--height",
+                  "--replay", "--calibration", "--i-min", "--view", "--overlay-corner", "--frame-every",
+                  "--error-every", "--video"},
+                 {"--no-render", "--contacts", "--no-overlay"});
+  std::string error;
+  if (!cl.parse(argc, argv, 2, error)) return fail(error, 2);
+  if (cl.positional().size() != 1) return fail("haif run: expected exactly one SCENE file (see 'haif help')", 2);
+  const std::string scenePath = cl.positional()[0];
+
+  int frames = -1, threads = int(tbb::info::default_concurrency()), width = 1280, height = 720, frameEvery = 1;
+  int iterations = -1, iMin = 4, errorEvery = 10;
+  double budget = 4.0;
+  if (!cl.getInt("--frames", 1, 10000000, frames, error) || !cl.getInt("--threads", 1, 1024, threads, error) ||
+      !cl.getInt("--width", 16, 8192, width, error) || !cl.getInt("--height", 16, 8192, height, error) ||
+      !cl.getInt("--frame-every", 1, 100000, frameEvery, error) ||
+      !cl.getInt("--iterations", 1, 100000, iterations, error) || !cl.getInt("--i-min", 1, 1000, iMin, error) ||
+      !cl.getInt("--error-every", 0, 1000000, errorEvery, error) ||
+      !cl.getDouble("--budget-ms", 0.001, 1e6, budget, error))
+    return fail(error, 2);
+
+  SolverSpec spec;
+  spec.mode = cl.get("--mode", cl.has("--replay") ? "replay" : "fixed");
+  if (spec.mode != "fixed" && spec.mode != "adaptive" && spec.mode != "model" && spec.mode != "replay")
+    return fail("haif run: --mode: expected fixed, adaptive, model or replay, got '" + spec.mode + "'", 2);
+  if (spec.mode == "replay" && !cl.has("--replay"))
+    return fail("haif run: --mode replay needs --replay RUN/stats.csv", 2);
+  spec.iterations = iterations;
+  spec.budgetMs = budget;
+  spec.iMin = iMin;
+  spec.replayPath = cl.get("--replay");
+  spec.calibrationPath = cl.get("--calibration");
+
+  const bool render = !cl.has("--no-render");
+#ifndef HAIF_HAVE_RENDER
+  if (render) return fail("haif run: this build has no renderer; use --no-render", 2);
+#endif
+  const std::string video = cl.get("--video");
+  if (!video.empty() && !render) return fail("haif run: --video needs rendering (drop --no-render)", 2);
+
+  Simulation sim;
+  if (!makeSimulation(scenePath, spec, threads, sim, error)) return fail(error);
+  World& world = *sim.world;
+  if (frames < 0) frames = sim.scene.settings.frames;
+  world.setSolveErrorInterval(errorEvery);
+
+  // Check the output folder before spending time on the simulation.
+  const std::string outDir = cl.get("--out", "output/" + sim.scene.name);
+  if (!ensureWritableDir(outDir, error)) return fail(error);
+  const std::string framesDir = outDir + "/frames";
+  if (render && !ensureWritableDir(framesDir, error)) return fail(error);
+
+  RunInfo info;
+  info.scene = sim.scene.name;
+  info.bodies = world.bodyCount();
+  info.threads = threads;
+  info.mode = sim.mode;
+  info.budgetMs = sim.mode == "fixed" ? 0.0 : budget;
+
+  std::vector<StepStats> stats;
+  RunMetrics metrics;
+  metrics.begin(world, uint64_t(frames));
+  std::vector<double> renderMs;
+  bool renderFailed = false;
+
+#ifdef HAIF_HAVE_RENDER
+  std::unique_ptr<render::Renderer> renderer;
+  FrameBuilder builder;
+  render::FrameInput frame;
+  if (render) {
+    render::RendererOptions ro;
+    ro.width = width;
+    ro.height = height;
+    renderer = render::Renderer::create(ro, &error);
+    if (!renderer) return fail("haif run: renderer: " + error);
+    if (!builder.registerMeshes(world, *renderer, error)) return fail("haif run: " + scenePath + ": " + error);
+    const std::string view = cl.get("--view", "normal");
+    if (view == "normal") frame.mode = render::ViewMode::Normal;
+    else if (view == "island") frame.mode = render::ViewMode::Island;
+    else if (view == "sleep") frame.mode = render::ViewMode::Sleep;
+    else if (view == "heat") frame.mode = render::ViewMode::Heat;
+    else return fail("haif run: --view: expected normal, island, sleep or heat, got '" + view + "'", 2);
+    frame.showContacts = cl.has("--contacts");
+    frame.overlay.enabled = !cl.has("--no-overlay");
+    const std::string corner = cl.get("--overlay-corner", "tl");
+    if (corner == "tl") frame.overlay.corner = render::Corner::TopLeft;
+    else if (corner == "tr") frame.overlay.corner = render::Corner::TopRight;
+    else if (corner == "bl") frame.overlay.corner = render::Corner::BottomLeft;
+    else if (corner == "br") frame.overlay.corner = render::Corner::BottomRight;
+    else return fail("haif run: --overlay-corner: expected tl, tr, bl or br, got '" + corner + "'", 2);
+    frame.overlay.scene = sim.scene.name;
+    frame.overlay.mode = sim.mode;
+    frame.overlay.bodies = int(world.bodyCount());
+    frame.overlay.iMin = float(world.controller().iMin);
+    frame.overlay.iMax = float(std::min(world.controller().iMax, 1000));
+    frame.overlay.budgetMs = float(info.budgetMs);
+  }
+  int frameIndex = 0;
+  auto afterStep = [&](const World& w) {
+    if (!render || renderFailed) return;
+    const StepStats& s = w.lastStats();
+    frame.overlay.iterations.push_back(float(s.iterationsChosen));
+    frame.overlay.collisionMs.push_back(float(s.collisionMs));
+    frame.overlay.solveMs.push_back(float(s.solveMs));
+    if ((s.step % uint64_t(frameEvery)) != 0) return;
+    const auto t0 = std::chrono::steady_clock::now();
+    builder.build(w, sim.scene.camera, frame);
+    frame.overlay.islands = int(s.islands);
+    frame.overlay.step = int64_t(s.step);
+    frame.overlay.msPerStep = float(s.totalMs);
+    char name[64];
+    std::snprintf(name, sizeof name, "/frame_%05d.png", frameIndex++);
+    std::string why;
+    if (!renderer->renderToPng(frame, framesDir + name, &why)) {
+      error = "haif run: rendering frame " + std::to_string(frameIndex - 1) + ": " + why;
+      renderFailed = true;
+    }
+    renderMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+  };
+#else
+  std::function<void(const World&)> afterStep;
+#endif
+
+  const bool finite = runSteps(sim, frames, stats, metrics, afterStep);
+  if (renderFailed) return fail(error);
+  info.stateHash = world.stateHash();
+  if (!renderMs.empty()) info.renderMsPerFrameMedian = quantile(renderMs, 0.5);
+
+  if (!writeFileAtomic(outDir + "/stats.csv", statsCsv(stats), error)) return fail(error);
+  if (!writeFileAtomic(outDir + "/summary.json", summaryJson(info, stats, metrics, world), error)) return fail(error);
+
+#ifdef HAIF_HAVE_RENDER
+  if (render) {
+    render::RunSeries series;
+    series.scene = sim.scene.name;
+    series.mode = sim.mode;
+    series.iMin = float(world.controller().iMin);
+    series.iMax = float(std::min(world.controller().iMax, 1000));
+    series.budgetMs = float(info.budgetMs);
+    series.errorName = "residual (last velocity correction)";
+    series.errorUnit = "m/s";
+    for (const StepStats& s : stats) {
+      series.iterations.push_back(float(s.iterationsChosen));
+      series.collisionMs.push_back(float(s.collisionMs));
+      series.solveMs.push_back(float(s.solveMs));
+      series.totalMs.push_back(float(s.totalMs));
+      series.error.push_back(std::max(1e-9f, s.residual));
+    }
+    const std::string chartsDir = outDir + "/charts";
+    if (!ensureWritableDir(chartsDir, error)) return fail(error);
+    if (!render::writeRunCharts(chartsDir, series, render::RunChartOptions{}, &error))
+      return fail("haif run: charts: " + error);
+    if (!video.empty() && !encodeVideoFromFrames(framesDir, 60.0 / frameEvery, video, error)) return fail(error);
+  }
+#endif
+
+  const StepStats* last = stats.empty() ? nullptr : &stats.back();
+  std::printf("%s: %zu steps, %u bodies, %d threads, mode %s: median %.3f ms/step, state_hash %016llx%s\n",
+              sim.scene.name.c_str(), stats.size(), world.bodyCount(), threads, sim.mode.c_str(),
+              quantile([&] { std::vector<double> v; for (auto& s : stats) v.push_back(s.totalMs); return v; }(), 0.5),
+              (unsigned long long)info.stateHash, finite ? "" : " (NaN detected: run stopped)");
+  (void)last;
+  std::printf("wrote %s/stats.csv, %s/summary.json%s\n", outDir.c_str(), outDir.c_str(),
+              render ? ", frames/, charts/" : "");
+  return finite ? 0 : 3;
+}
+
+}  // namespace haif

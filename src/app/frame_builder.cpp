@@ -1,0 +1,105 @@
+#include "app/frame_builder.h"
+
+#ifdef HAIF_HAVE_RENDER
+
+namespace haif {
+
+bool FrameBuilder::registerMeshes(const World& world, render::Renderer& renderer, std::string& error) {
+  meshOfBody_.assign(world.bodyCount(), 0);
+  for (uint32_t i = 0; i < world.bodyCount(); ++i) {
+    const Shape& s = world.shape(i);
+    const void* key = s.type == ShapeType::ConvexHull ? static_cast<const void*>(s.hull.get())
+                      : s.type == ShapeType::TriangleMesh ? static_cast<const void*>(s.mesh.get())
+                                                          : nullptr;
+    if (!key) continue;
+    auto it = meshIds_.find(key);
+    if (it == meshIds_.end()) {
+      std::vector<float> pos;
+      std::vector<uint32_t> idx;
+      if (s.type == ShapeType::ConvexHull) {
+        for (const Vec3& v : s.hull->vertices) pos.insert(pos.end(), {v.x(), v.y(), v.z()});
+        for (const ConvexHull::Face& f : s.hull->faces)  // fan-triangulate each convex polygon
+          for (uint32_t k = 1; k + 1 < f.count; ++k)
+            idx.insert(idx.end(), {s.hull->faceVertices[f.first], s.hull->faceVertices[f.first + k],
+                                   s.hull->faceVertices[f.first + k + 1]});
+      } else {
+        for (const Vec3& v : s.mesh->vertices) pos.insert(pos.end(), {v.x(), v.y(), v.z()});
+        idx = s.mesh->indices;
+      }
+      const uint32_t id = static_cast<uint32_t>(meshIds_.size() + 1);
+      std::string why;
+      if (!renderer.registerMesh(id, pos, idx, &why)) {
+        error = "body " + std::to_string(i) + ": cannot register render mesh: " + why;
+        return false;
+      }
+      it = meshIds_.emplace(key, id).first;
+    }
+    meshOfBody_[i] = it->second;
+  }
+  return true;
+}
+
+void FrameBuilder::build(const World& world, const CameraDesc& camera, render::FrameInput& frame) const {
+  frame.camera.automatic = !camera.given;
+  if (camera.given) {
+    for (int k = 0; k < 3; ++k) {
+      frame.camera.eye[k] = camera.eye[k];
+      frame.camera.target[k] = camera.target[k];
+      frame.camera.up[k] = camera.up[k];
+    }
+    frame.camera.fovYDegrees = camera.fovYDeg;
+  }
+  const BodyStore& b = world.bodies();
+  frame.instances.resize(world.bodyCount());
+  for (uint32_t i = 0; i < world.bodyCount(); ++i) {
+    render::Instance& in = frame.instances[i];
+    const Shape& s = world.shape(i);
+    const Transform& xf = b.xf[i];
+    switch (s.type) {
+      case ShapeType::Sphere: in.kind = render::ShapeKind::Sphere; break;
+      case ShapeType::Box: in.kind = render::ShapeKind::Box; break;
+      case ShapeType::Capsule: in.kind = render::ShapeKind::Capsule; break;
+      case ShapeType::ConvexHull: in.kind = render::ShapeKind::ConvexHull; break;
+      case ShapeType::TriangleMesh: in.kind = render::ShapeKind::TriangleMesh; break;
+      default: in.kind = render::ShapeKind::Plane; break;
+    }
+    Vec3 p = xf.p;
+    Quat q = xf.q;
+    if (s.type == ShapeType::Plane) {
+      // Draw the plane through its closest point to the origin with local +y along the normal.
+      p = xf.apply(s.planeNormal * s.planeOffset);
+      q = xf.q * Quat::FromTwoVectors(Vec3::UnitY(), s.planeNormal);
+      in.halfExtents[0] = in.halfExtents[2] = 200.0f;
+    }
+    in.position[0] = p.x(); in.position[1] = p.y(); in.position[2] = p.z();
+    in.orientation[0] = q.x(); in.orientation[1] = q.y(); in.orientation[2] = q.z(); in.orientation[3] = q.w();
+    if (s.type == ShapeType::Box)
+      for (int k = 0; k < 3; ++k) in.halfExtents[k] = s.halfExtents[k];
+    in.radius = s.radius;
+    in.halfHeight = s.halfHeight;
+    in.meshId = i < meshOfBody_.size() ? meshOfBody_[i] : 0;
+    in.bodyId = i;
+    const int32_t island = world.islandOf(i);
+    in.islandId = island < 0 ? 0u : uint32_t(island);
+    in.sleeping = b.asleep[i] != 0;
+    in.isStatic = b.kind[i] == BodyKind::Static;
+    in.heat = std::min(1.0f, b.v[i].norm() / 5.0f);
+  }
+  frame.contacts.clear();
+  if (frame.showContacts) {
+    for (const Contact& c : world.contacts())
+      for (int k = 0; k < c.manifold.count; ++k) {
+        const ContactPoint& cp = c.manifold.points[k];
+        render::ContactMarker m;
+        for (int d = 0; d < 3; ++d) {
+          m.point[d] = cp.position[d];
+          m.normal[d] = cp.normal[d];
+        }
+        frame.contacts.push_back(m);
+      }
+  }
+}
+
+}  // namespace haif
+
+#endif

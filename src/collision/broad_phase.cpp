@@ -1,0 +1,26 @@
+#include "collision/broad_phase.h"
+
+namespace haif {
+
+void BroadPhase::addBody(uint32_t body, const Aabb& tight, bool isStatic) {
+  if (proxy_.size() <= body) {
+    proxy_.resize(body + 1, DynamicTree::kNull);
+    isStatic_.resize(body + 1, 0);
+    movedFlag_.resize(body + 1, 0);
+  }
+  isStatic_[body] = isStatic ? 1 : 0;
+  // Static boxes need no margin: they never move.
+  proxy_[body] = isStatic ? staticTree_.createProxy(tight, body)
+                          : movingTree_.createProxy(tight.expanded(fatMargin), body);
+  markMoved(body);
+}
+
+bool BroadPhase::update(uint32_t body, const Aabb& tight) {
+  const int32_t p = proxy_[body];
+  if (movingTree_.fatAabb(p).contains(tight)) return false;
+  movingTree_.moveProxy(p, tight.expanded(fatMargin));
+  markMoved(body);
+  return true;
+}
+
+}  // namespace haif

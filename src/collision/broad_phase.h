@@ -1,0 +1,64 @@
+// Broad phase: two dynamic AABB trees (static bodies; moving bodies) holding fat boxes. A body is
+// re-inserted only when its tight box leaves its fat box, and only re-inserted bodies look for new
+// pairs, so resting bodies cost one containment test per step. Static bodies are never tested
+// against each other: they live in their own tree and do not query it.
+#pragma once
+
+#include "collision/dynamic_tree.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace haif {
+
+class BroadPhase {
+ public:
+  /// Margin added around a tight box: bodies may move this far before they are re-inserted.
+  float fatMargin = 0.1f;
+
+  void addBody(uint32_t body, const Aabb& tight, bool isStatic);
+  /// Updates a moving body's box; returns true when the body left its fat box (re-inserted).
+  bool update(uint32_t body, const Aabb& tight);
+  const Aabb& fatAabb(uint32_t body) const {
+    return (isStatic_[body] ? staticTree_ : movingTree_).fatAabb(proxy_[body]);
+  }
+  bool fatOverlap(uint32_t a, uint32_t b) const { return fatAabb(a).overlaps(fatAabb(b)); }
+
+  /// Reports candidate pairs (a, b) that involve a body moved since the last call, each pair once,
+  /// in a deterministic order; then forgets the moves.
+  template <class F>
+  void findNewPairs(F&& onPair) {
+    for (uint32_t m : moved_) {
+      const Aabb& box = fatAabb(m);
+      auto visit = [&](uint32_t other) {
+        if (other == m) return;
+        if (movedFlag_[other] && other < m) return;  // that body's own query reports the pair
+        onPair(m, other);
+      };
+      movingTree_.query(box, visit);
+      if (!isStatic_[m]) staticTree_.query(box, visit);
+    }
+    for (uint32_t m : moved_) movedFlag_[m] = 0;
+    moved_.clear();
+  }
+
+  const DynamicTree& movingTree() const { return movingTree_; }
+  const DynamicTree& staticTree() const { return staticTree_; }
+
+ private:
+  void markMoved(uint32_t body) {
+    if (!movedFlag_[body]) {
+      movedFlag_[body] = 1;
+      moved_.push_back(body);
+    }
+  }
+
+  DynamicTree movingTree_;
+  DynamicTree staticTree_;
+  std::vector<int32_t> proxy_;
+  std::vector<uint8_t> isStatic_;
+  std::vector<uint8_t> movedFlag_;
+  std::vector<uint32_t> moved_;
+};
+
+}  // namespace haif

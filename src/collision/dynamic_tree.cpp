@@ -1,0 +1,177 @@
+#include "collision/dynamic_tree.h"
+
+#include <cassert>
+
+namespace haif {
+
+int32_t DynamicTree::allocateNode() {
+  if (freeList_ == kNull) {
+    nodes_.emplace_back();
+    return static_cast<int32_t>(nodes_.size() - 1);
+  }
+  const int32_t n = freeList_;
+  freeList_ = nodes_[n].parent;
+  nodes_[n] = Node{};
+  return n;
+}
+
+void DynamicTree::freeNode(int32_t n) {
+  nodes_[n].parent = freeList_;
+  nodes_[n].height = -1;
+  freeList_ = n;
+}
+
+int32_t DynamicTree::createProxy(const Aabb& fat, uint32_t userData) {
+  const int32_t leaf = allocateNode();
+  nodes_[leaf].box = fat;
+  nodes_[leaf].userData = userData;
+  insertLeaf(leaf);
+  ++proxyCount_;
+  return leaf;
+}
+
+void DynamicTree::destroyProxy(int32_t proxy) {
+  removeLeaf(proxy);
+  freeNode(proxy);
+  --proxyCount_;
+}
+
+void DynamicTree::moveProxy(int32_t proxy, const Aabb& fat) {
+  removeLeaf(proxy);
+  nodes_[proxy].box = fat;
+  insertLeaf(proxy);
+}
+
+void DynamicTree::insertLeaf(int32_t leaf) {
+  if (root_ == kNull) {
+    root_ = leaf;
+    nodes_[leaf].parent = kNull;
+    return;
+  }
+  // Descend towards the sibling that minimises the surface-area increase (greedy SAH).
+  const Aabb box = nodes_[leaf].box;
+  int32_t index = root_;
+  while (nodes_[index].child1 != kNull) {
+    const Node& n = nodes_[index];
+    const float area = n.box.perimeter();
+    const float combined = n.box.merged(box).perimeter();
+    const float costHere = 2.0f * combined;              // new parent of (n, leaf)
+    const float inherited = 2.0f * (combined - area);    // growth pushed onto ancestors below
+    auto childCost = [&](int32_t c) {
+      const Aabb merged = box.merged(nodes_[c].box);
+      const float grow = nodes_[c].child1 == kNull ? merged.perimeter()
+                                                   : merged.perimeter() - nodes_[c].box.perimeter();
+      return grow + inherited;
+    };
+    const float cost1 = childCost(n.child1);
+    const float cost2 = childCost(n.child2);
+    if (costHere < cost1 && costHere < cost2) break;
+    index = cost1 < cost2 ? n.child1 : n.child2;
+  }
+
+  const int32_t sibling = index;
+  const int32_t oldParent = nodes_[sibling].parent;
+  const int32_t newParent = allocateNode();
+  nodes_[newParent].parent = oldParent;
+  nodes_[newParent].box = box.merged(nodes_[sibling].box);
+  nodes_[newParent].height = nodes_[sibling].height + 1;
+  nodes_[newParent].child1 = sibling;
+  nodes_[newParent].child2 = leaf;
+  nodes_[sibling].parent = newParent;
+  nodes_[leaf].parent = newParent;
+  if (oldParent == kNull) {
+    root_ = newParent;
+  } else if (nodes_[oldParent].child1 == sibling) {
+    nodes_[oldParent].child1 = newParent;
+  } else {
+    nodes_[oldParent].child2 = newParent;
+  }
+  refitUpwards(nodes_[leaf].parent);
+}
+
+void DynamicTree::removeLeaf(int32_t leaf) {
+  if (leaf == root_) {
+    root_ = kNull;
+    return;
+  }
+  const int32_t parent = nodes_[leaf].parent;
+  const int32_t grand = nodes_[parent].parent;
+  const int32_t sibling = nodes_[parent].child1 == leaf ? nodes_[parent].child2 : nodes_[parent].child1;
+  if (grand == kNull) {
+    root_ = sibling;
+    nodes_[sibling].parent = kNull;
+  } else {
+    if (nodes_[grand].child1 == parent) nodes_[grand].child1 = sibling;
+    else nodes_[grand].child2 = sibling;
+    nodes_[sibling].parent = grand;
+    refitUpwards(grand);
+  }
+  freeNode(parent);
+}
+
+void DynamicTree::refitUpwards(int32_t index) {
+  while (index != kNull) {
+    index = balance(index);
+    Node& n = nodes_[index];
+    const Node& c1 = nodes_[n.child1];
+    const Node& c2 = nodes_[n.child2];
+    n.height = 1 + std::max(c1.height, c2.height);
+    n.box = c1.box.merged(c2.box);
+    index = n.parent;
+  }
+}
+
+// AVL-style rotation: if one child is more than one level taller, lift that child's taller child
+// to keep the depth logarithmic whatever the insertion order. Returns the subtree's new root.
+int32_t DynamicTree::balance(int32_t a) {
+  Node& A = nodes_[a];
+  if (A.child1 == kNull || A.height < 2) return a;
+  const int32_t b = A.child1, c = A.child2;
+  const int32_t diff = nodes_[c].height - nodes_[b].height;
+  if (diff >= -1 && diff <= 1) return a;
+
+  // `up` is the taller child; `keep` the other one. `up` takes a's place.
+  const bool rightTaller = diff > 1;
+  const int32_t up = rightTaller ? c : b;
+  const int32_t keep = rightTaller ? b : c;
+  Node& U = nodes_[up];
+  const int32_t f = U.child1, g = U.child2;
+  const bool fTaller = nodes_[f].height > nodes_[g].height;
+  const int32_t stays = fTaller ? f : g;   // stays under `up`
+  const int32_t moves = fTaller ? g : f;   // moves under `a`
+
+  U.child1 = a;
+  U.child2 = stays;
+  U.parent = A.parent;
+  A.parent = up;
+  if (U.parent == kNull) root_ = up;
+  else if (nodes_[U.parent].child1 == a) nodes_[U.parent].child1 = up;
+  else nodes_[U.parent].child2 = up;
+
+  if (rightTaller) A.child2 = moves;
+  else A.child1 = moves;
+  nodes_[moves].parent = a;
+  A.box = nodes_[keep].box.merged(nodes_[moves].box);
+  A.height = 1 + std::max(nodes_[keep].height, nodes_[moves].height);
+  U.box = A.box.merged(nodes_[stays].box);
+  U.height = 1 + std::max(A.height, nodes_[stays].height);
+  return up;
+}
+
+bool DynamicTree::validate() const {
+  if (root_ == kNull) return proxyCount_ == 0;
+  return nodes_[root_].parent == kNull && validateNode(root_, kNull);
+}
+
+bool DynamicTree::validateNode(int32_t n, int32_t parent) const {
+  const Node& node = nodes_[n];
+  if (node.parent != parent) return false;
+  if (node.child1 == kNull) return node.child2 == kNull && node.height == 0;
+  const Node& c1 = nodes_[node.child1];
+  const Node& c2 = nodes_[node.child2];
+  if (node.height != 1 + std::max(c1.height, c2.height)) return false;
+  if (!node.box.contains(c1.box) || !node.box.contains(c2.box)) return false;
+  return validateNode(node.child1, n) && validateNode(node.child2, n);
+}
+
+}  // namespace haif

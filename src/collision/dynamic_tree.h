@@ -1,0 +1,74 @@
+// Dynamic AABB tree: a binary bounding-volume hierarchy of "fat" boxes that supports insert,
+// remove and move in O(log n), kept height-balanced by rotations. Bodies that rest inside their fat
+// box cost nothing to update, which is what makes large resting scenes cheap.
+#pragma once
+
+#include "core/aabb.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace haif {
+
+class DynamicTree {
+ public:
+  static constexpr int32_t kNull = -1;
+
+  int32_t createProxy(const Aabb& fat, uint32_t userData);
+  void destroyProxy(int32_t proxy);
+  /// Replaces the proxy's fat box (remove + insert).
+  void moveProxy(int32_t proxy, const Aabb& fat);
+
+  const Aabb& fatAabb(int32_t proxy) const { return nodes_[proxy].box; }
+  uint32_t userData(int32_t proxy) const { return nodes_[proxy].userData; }
+  int32_t height() const { return root_ == kNull ? 0 : nodes_[root_].height; }
+  int32_t proxyCount() const { return proxyCount_; }
+
+  /// Calls f(userData) for every proxy whose fat box overlaps `box`. Safe to call concurrently.
+  template <class F>
+  void query(const Aabb& box, F&& f) const {
+    if (root_ == kNull) return;
+    int32_t stack[kMaxStack];
+    int top = 0;
+    stack[top++] = root_;
+    while (top > 0) {
+      const Node& n = nodes_[stack[--top]];
+      if (!n.box.overlaps(box)) continue;
+      if (n.child1 == kNull) {
+        f(n.userData);
+      } else if (top + 2 <= kMaxStack) {
+        stack[top++] = n.child1;
+        stack[top++] = n.child2;
+      }
+    }
+  }
+
+  /// Checks the structural invariants (parents, heights, enclosing boxes); for tests.
+  bool validate() const;
+
+ private:
+  static constexpr int kMaxStack = 256;  // a balanced tree of 2^64 leaves is < 128 deep
+  struct Node {
+    Aabb box;
+    int32_t parent = kNull;  // doubles as the free-list link for free nodes
+    int32_t child1 = kNull;
+    int32_t child2 = kNull;
+    int32_t height = 0;      // leaf 0, free -1
+    uint32_t userData = 0;
+  };
+
+  int32_t allocateNode();
+  void freeNode(int32_t n);
+  void insertLeaf(int32_t leaf);
+  void removeLeaf(int32_t leaf);
+  int32_t balance(int32_t a);
+  void refitUpwards(int32_t n);
+  bool validateNode(int32_t n, int32_t parent) const;
+
+  std::vector<Node> nodes_;
+  int32_t root_ = kNull;
+  int32_t freeList_ = kNull;
+  int32_t proxyCount_ = 0;
+};
+
+}  // namespace haif

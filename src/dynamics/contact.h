@@ -1,0 +1,21 @@
+// A persistent contact between two bodies: the latest manifold plus the impulses accumulated by
+// the solver, carried from step to step (matched by feature id) for warm starting.
+#pragma once
+
+#include "collision/manifold.h"
+
+#include <cstdint>
+
+namespace haif {
+
+struct Contact {
+  uint32_t a = 0, b = 0;           ///< body ids; the narrow phase sees shape a first
+  float friction = 0.6f;
+  float restitution = 0.0f;
+  Manifold manifold;
+  float normalImpulse[kMaxManifoldPoints] = {};  ///< accumulated along the normal (N s)
+  Vec3 frictionImpulse[kMaxManifoldPoints] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};  ///< accumulated tangential impulse, world (N s)
+  bool touching() const { return manifold.count > 0; }
+};
+
+}  // namespace haif

@@ -1,0 +1,65 @@
+#include "haif/adaptive_controller.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace haif {
+
+AdaptiveController::AdaptiveController(const CostModel& model, const AdaptiveSettings& s, bool useClock)
+    : model_(model), s_(s), useClock_(useClock) {
+  iMin = s.iMin;
+  iMax = s.iMax;
+}
+
+double AdaptiveController::iterationMs(const ControlContext& ctx) const {
+  const double crit = CostModel::criticalRows(ctx.totalRows, ctx.largestRows, ctx.threads, model_.parallelEfficiency);
+  return model_.msPerRowIteration * crit;
+}
+
+int AdaptiveController::choose(const ControlContext& ctx) {
+  if (ctx.budgetMs <= 0.0 || ctx.totalRows == 0) {
+    previous_ = iMax;
+    return iMax;  // no budget, or nothing to solve: precision costs nothing
+  }
+  const double crit = CostModel::criticalRows(ctx.totalRows, ctx.largestRows, ctx.threads, model_.parallelEfficiency);
+  const double elapsed = useClock_ ? ctx.elapsedMs : model_.collisionMs(ctx.bodies, ctx.contactPoints);
+  const double post = useClock_ && postMs_ >= 0.0 ? postMs_ : model_.msPerBody * 0.5 * ctx.bodies;
+  const double remaining = ctx.budgetMs - elapsed - post - model_.msPerRowPrepare * crit;
+  const double tIter = model_.msPerRowIteration * crit;
+  int I = tIter > 0.0 ? static_cast<int>(std::floor(s_.alpha * std::max(0.0, remaining) / tIter)) : iMax;
+  // Smooth upward changes only: a step that must do less does so at once, to keep the deadline.
+  if (previous_ > 0) I = std::min(I, previous_ + s_.maxStepUp);
+  I = std::clamp(I, iMin, iMax);
+  previous_ = I;
+  return I;
+}
+
+void AdaptiveController::observe(const ControlContext& ctx, const SolveObservation& obs) {
+  if (!useClock_) return;  // model mode never learns from the clock: it must stay deterministic
+  const double lr = s_.learnRate;
+  postMs_ = postMs_ < 0.0 ? obs.integrateMs : (1.0 - lr) * postMs_ + lr * obs.integrateMs;
+  const double crit = CostModel::criticalRows(ctx.totalRows, ctx.largestRows, ctx.threads, model_.parallelEfficiency);
+  if (crit <= 0.0 || obs.solveMs <= 0.0) return;
+  // The solve did (prepare + iterations) over the critical path. Keep the prepare/iteration ratio of
+  // the model and fit the scale to the measurement.
+  const double itersOnPath = obs.iterations > 0 && ctx.totalRows > 0
+                                 ? double(obs.criticalRowIterations) / std::max(1.0, double(ctx.largestRows))
+                                 : 0.0;
+  const double ratio = model_.msPerRowPrepare / model_.msPerRowIteration;
+  const double denom = crit * (ratio + std::max(1.0, itersOnPath));
+  const double perRow = obs.solveMs / denom;
+  model_.msPerRowIteration = (1.0 - lr) * model_.msPerRowIteration + lr * perRow;
+  model_.msPerRowPrepare = ratio * model_.msPerRowIteration;
+}
+
+ReplayController::ReplayController(std::vector<int> counts) : counts_(std::move(counts)) {
+  iMin = 1;
+  iMax = 1 << 20;
+}
+
+int ReplayController::choose(const ControlContext& ctx) {
+  if (counts_.empty()) return 1;
+  return counts_[std::min<size_t>(ctx.step, counts_.size() - 1)];
+}
+
+}  // namespace haif

@@ -1,0 +1,54 @@
+// Adaptive iteration control (DESIGN.md §2):
+//   I = clamp(floor(α · T_remaining / t_iter), I_min, I_max)
+// T_remaining is the budget minus what the step already spent (after collision detection) minus
+// what it will still spend outside the iterations (row preparation, integration); t_iter is the
+// cost of one iteration along the critical path: max(largest island, total / threads) rows.
+// In `adaptive` mode times come from the wall clock and the per-row costs are learned online; in
+// `model` mode both come from the cost model alone, so decisions are deterministic.
+#pragma once
+
+#include "haif/cost_model.h"
+#include "haif/iteration_controller.h"
+
+namespace haif {
+
+struct AdaptiveSettings {
+  double alpha = 0.8;       ///< fraction of the remaining time the iterations may use
+  int iMin = 4;
+  int iMax = 64;
+  int maxStepUp = 2;        ///< I rises by at most this much per step (smoothing); it falls at once
+  double learnRate = 0.15;  ///< EMA weight of a new measurement of the per-row cost
+};
+
+class AdaptiveController final : public IterationController {
+ public:
+  AdaptiveController(const CostModel& model, const AdaptiveSettings& s, bool useClock);
+  int choose(const ControlContext& ctx) override;
+  void observe(const ControlContext& ctx, const SolveObservation& obs) override;
+  std::string name() const override { return useClock_ ? "adaptive" : "model"; }
+  bool usesClock() const override { return useClock_; }
+
+  const CostModel& model() const { return model_; }
+  /// Time (ms) the controller expects an iteration over the critical path to take.
+  double iterationMs(const ControlContext& ctx) const;
+
+ private:
+  CostModel model_;
+  AdaptiveSettings s_;
+  bool useClock_;
+  double postMs_ = -1.0;  // learned integration time (adaptive mode)
+  int previous_ = -1;
+};
+
+/// Replays the iteration counts of an earlier run, step by step (the last one repeats).
+class ReplayController final : public IterationController {
+ public:
+  explicit ReplayController(std::vector<int> counts);
+  int choose(const ControlContext& ctx) override;
+  std::string name() const override { return "replay"; }
+
+ private:
+  std::vector<int> counts_;
+};
+
+}  // namespace haif

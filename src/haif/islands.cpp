@@ -1,0 +1,82 @@
+#include "haif/islands.h"
+
+#include <algorithm>
+
+namespace haif {
+
+namespace {
+inline bool active(const BodyStore& b, uint32_t i) { return b.kind[i] == BodyKind::Dynamic && !b.asleep[i]; }
+}  // namespace
+
+void IslandBuilder::build(const BodyStore& bodies, const std::vector<Contact>& contacts, IslandSet& out) {
+  const uint32_t n = static_cast<uint32_t>(bodies.size());
+  parent_.resize(n);
+  for (uint32_t i = 0; i < n; ++i) parent_[i] = i;
+  for (const Contact& c : contacts) {
+    if (c.touching() && active(bodies, c.a) && active(bodies, c.b)) unite(c.a, c.b);
+  }
+
+  // Number the islands by their smallest body id (the root), in ascending order.
+  islandOfRoot_.assign(n, -1);
+  unsorted_.clear();
+  for (uint32_t i = 0; i < n; ++i) {
+    if (!active(bodies, i)) continue;
+    const uint32_t r = find(i);
+    if (islandOfRoot_[r] < 0) {
+      islandOfRoot_[r] = static_cast<int32_t>(unsorted_.size());
+      unsorted_.emplace_back();
+    }
+    ++unsorted_[islandOfRoot_[r]].bodyCount;
+  }
+  auto islandOfContact = [&](const Contact& c) -> int32_t {
+    if (!c.touching()) return -1;
+    if (active(bodies, c.a)) return islandOfRoot_[find(c.a)];
+    if (active(bodies, c.b)) return islandOfRoot_[find(c.b)];
+    return -1;
+  };
+  for (const Contact& c : contacts) {
+    const int32_t k = islandOfContact(c);
+    if (k < 0) continue;
+    ++unsorted_[k].contactCount;
+    unsorted_[k].rows += 3u * static_cast<uint32_t>(c.manifold.count);
+  }
+
+  // Largest first, so the longest task starts first when islands run in parallel.
+  const uint32_t m = static_cast<uint32_t>(unsorted_.size());
+  order_.resize(m);
+  for (uint32_t k = 0; k < m; ++k) order_[k] = k;
+  std::stable_sort(order_.begin(), order_.end(), [&](uint32_t x, uint32_t y) {
+    if (unsorted_[x].rows != unsorted_[y].rows) return unsorted_[x].rows > unsorted_[y].rows;
+    return unsorted_[x].bodyCount > unsorted_[y].bodyCount;
+  });
+  out.islands.resize(m);
+  cursorBody_.resize(m);
+  cursorContact_.resize(m);
+  uint32_t fb = 0, fc = 0;
+  out.totalRows = out.largestRows = out.largestBodies = 0;
+  for (uint32_t s = 0; s < m; ++s) {
+    Island isl = unsorted_[order_[s]];
+    isl.firstBody = fb;
+    isl.firstContact = fc;
+    fb += isl.bodyCount;
+    fc += isl.contactCount;
+    cursorBody_[order_[s]] = isl.firstBody;
+    cursorContact_[order_[s]] = isl.firstContact;
+    out.totalRows += isl.rows;
+    out.largestRows = std::max(out.largestRows, isl.rows);
+    out.largestBodies = std::max(out.largestBodies, isl.bodyCount);
+    out.islands[s] = isl;
+  }
+  out.bodies.resize(fb);
+  out.contacts.resize(fc);
+  for (uint32_t i = 0; i < n; ++i) {
+    if (!active(bodies, i)) continue;
+    out.bodies[cursorBody_[islandOfRoot_[find(i)]]++] = i;
+  }
+  for (uint32_t ci = 0; ci < contacts.size(); ++ci) {
+    const int32_t k = islandOfContact(contacts[ci]);
+    if (k >= 0) out.contacts[cursorContact_[k]++] = ci;
+  }
+}
+
+}  // namespace haif

@@ -1,0 +1,58 @@
+// Islands: connected components of the constraint graph over awake dynamic bodies. Static and
+// kinematic bodies never join (or merge) islands: a contact with one belongs to the island of its
+// dynamic body. Islands are independent, so they are solved concurrently.
+#pragma once
+
+#include "core/body_store.h"
+#include "dynamics/contact.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace haif {
+
+struct Island {
+  uint32_t firstBody = 0, bodyCount = 0;        ///< range in IslandSet::bodies
+  uint32_t firstContact = 0, contactCount = 0;  ///< range in IslandSet::contacts
+  uint32_t rows = 0;                            ///< solver rows (3 per contact point): the work of one iteration
+};
+
+struct IslandSet {
+  std::vector<Island> islands;    ///< largest (most rows) first
+  std::vector<uint32_t> bodies;   ///< body ids grouped by island, ascending within an island
+  std::vector<uint32_t> contacts; ///< contact indices grouped by island, ascending within an island
+  uint32_t totalRows = 0;
+  uint32_t largestRows = 0;
+  uint32_t largestBodies = 0;
+};
+
+/// Union-find island builder; keeps its scratch buffers between steps (no allocation once warm).
+class IslandBuilder {
+ public:
+  /// A contact joins its bodies when it has points and both bodies are awake dynamic ones.
+  void build(const BodyStore& bodies, const std::vector<Contact>& contacts, IslandSet& out);
+
+ private:
+  uint32_t find(uint32_t x) {
+    while (parent_[x] != x) {
+      parent_[x] = parent_[parent_[x]];  // path halving
+      x = parent_[x];
+    }
+    return x;
+  }
+  void unite(uint32_t a, uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a == b) return;
+    if (a > b) std::swap(a, b);  // smaller id becomes the root: deterministic
+    parent_[b] = a;
+  }
+
+  std::vector<uint32_t> parent_;
+  std::vector<int32_t> islandOfRoot_;
+  std::vector<uint32_t> cursorBody_, cursorContact_;
+  std::vector<uint32_t> order_;
+  std::vector<Island> unsorted_;
+};
+
+}  // namespace haif

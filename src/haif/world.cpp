@@ -1,0 +1,511 @@
+#include "haif/world.h"
+
+#include "collision/collide.h"
+#include "dynamics/integrator.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+namespace haif {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+/// Rows of an island whose total is below this are batched with their neighbours into one task,
+/// so thousands of tiny islands do not each pay a task's overhead.
+constexpr uint32_t kBatchRows = 1024;
+
+/// An old contact point this close (m) to a new one passes on its impulse when ids do not match.
+constexpr float kWarmStartMatchDistance = 0.02f;
+
+}  // namespace
+
+World::World(const WorldSettings& settings) : settings_(settings) {
+  controller_ = std::make_unique<FixedController>(settings_.iterations);
+  setThreads(settings_.threads);
+}
+
+World::~World() = default;
+
+void World::setController(std::unique_ptr<IterationController> c) { controller_ = std::move(c); }
+
+void World::setThreads(int threads) {
+  settings_.threads = std::max(1, threads);
+  // The arena's worker threads are created once and reused by every step.
+  arena_ = settings_.threads > 1 ? std::make_unique<tbb::task_arena>(settings_.threads) : nullptr;
+}
+
+template <class F>
+void World::parallelFor(uint32_t n, uint32_t grain, F&& f) {
+  if (!arena_ || n <= grain) {
+    if (n > 0) f(0u, n);
+    return;
+  }
+  arena_->execute([&] {
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, grain),
+                      [&](const tbb::blocked_range<uint32_t>& r) { f(r.begin(), r.end()); });
+  });
+}
+
+uint32_t World::addBody(const BodyDef& def) {
+  float mass = 0.0f;
+  Mat3 inertia = Mat3::Zero();
+  const MassProperties unit = computeMassProperties(def.shape, 1.0f);
+  if (def.kind == BodyKind::Dynamic) {
+    const MassProperties mp = computeMassProperties(def.shape, def.density);
+    mass = def.mass > 0.0f ? def.mass : mp.mass;
+    // Inertia scales with mass for a given shape: take the unit-density tensor and rescale.
+    inertia = unit.mass > 0.0f ? Mat3(unit.inertia * (mass / unit.mass)) : Mat3::Identity() * mass;
+  }
+  const uint32_t id = bodies_.add(def.kind, def.xf, mass, inertia);
+  bodies_.v[id] = def.linearVelocity;
+  bodies_.w[id] = def.angularVelocity;
+  bodies_.friction[id] = def.friction;
+  bodies_.restitution[id] = def.restitution;
+  bodies_.linearDamping[id] = def.linearDamping;
+  bodies_.angularDamping[id] = def.angularDamping;
+  shapes_.push_back(def.shape);
+  volume_.push_back(unit.mass);
+  bounds_.push_back(computeAabb(def.shape, def.xf));
+  if (def.shape.type == ShapeType::TriangleMesh) hasMesh_ = true;
+  islandOfBody_.push_back(-1);
+  broadPhase_.addBody(id, bounds_[id], def.kind == BodyKind::Static);
+  return id;
+}
+
+void World::wake(uint32_t body) {
+  if (!bodies_.asleep[body]) return;
+  const int32_t set = bodies_.sleepSet[body];
+  auto wakeOne = [&](uint32_t i) {
+    bodies_.asleep[i] = 0;
+    bodies_.sleepSet[i] = -1;
+    bodies_.restTime[i] = 0.0f;
+  };
+  if (set < 0) {
+    wakeOne(body);
+    return;
+  }
+  for (uint32_t i : sleepSets_[set]) wakeOne(i);
+  sleepSets_[set].clear();
+  freeSleepSets_.push_back(set);
+}
+
+// ---- collision ---------------------------------------------------------------------------
+
+void World::updateBroadPhase() {
+  const uint32_t n = bodyCount();
+  const float dt = settings_.dt;
+  // Tight boxes (kept for buoyancy and metrics), then each swept by this step's motion so fast
+  // bodies find their pairs before they pass through them.
+  parallelFor(n, 1024, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t i = begin; i < end; ++i)
+      if (bodies_.kind[i] != BodyKind::Static && !bodies_.asleep[i]) bounds_[i] = computeAabb(shapes_[i], bodies_.xf[i]);
+  });
+  for (uint32_t i = 0; i < n; ++i) {
+    if (bodies_.kind[i] == BodyKind::Static || bodies_.asleep[i]) continue;
+    const Vec3 d = dt * bodies_.v[i];
+    broadPhase_.update(i, bounds_[i].merged({bounds_[i].lo + d, bounds_[i].hi + d}));
+  }
+  uint32_t created = 0;
+  broadPhase_.findNewPairs([&](uint32_t a, uint32_t b) {
+    const bool dynA = bodies_.kind[a] == BodyKind::Dynamic, dynB = bodies_.kind[b] == BodyKind::Dynamic;
+    if (!dynA && !dynB) return;  // static/kinematic pairs need no contact
+    const uint64_t key = PairMap::key(a, b);
+    if (pairs_.find(key) != PairMap::kNotFound) return;
+    Contact c;
+    c.a = std::min(a, b);
+    c.b = std::max(a, b);
+    c.friction = std::sqrt(bodies_.friction[a] * bodies_.friction[b]);
+    c.restitution = std::max(bodies_.restitution[a], bodies_.restitution[b]);
+    pairs_.set(key, static_cast<uint32_t>(contacts_.size()));
+    contacts_.push_back(c);
+    ++created;
+  });
+  stats_.newPairs = created;
+}
+
+void World::narrowPhase() {
+  const uint32_t n = static_cast<uint32_t>(contacts_.size());
+  wakeFlag_.resize(n);
+  auto active = [&](uint32_t i) {
+    return bodies_.kind[i] == BodyKind::Kinematic || (bodies_.kind[i] == BodyKind::Dynamic && !bodies_.asleep[i]);
+  };
+  parallelFor(n, 64, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t ci = begin; ci < end; ++ci) {
+      Contact& c = contacts_[ci];
+      wakeFlag_[ci] = 0;
+      if (!active(c.a) && !active(c.b)) continue;  // sleeping or static on both sides: keep the manifold
+      const Manifold old = c.manifold;
+      const float rel = (bodies_.v[c.b] - bodies_.v[c.a]).norm() * settings_.dt;
+      collide(shapes_[c.a], bodies_.xf[c.a], shapes_[c.b], bodies_.xf[c.b],
+              settings_.contactMargin + std::min(rel, 1.0f), c.manifold);
+      // Carry accumulated impulses over to the points that touch the same features; when the
+      // feature ids changed (a reference face switched), fall back to the nearest old point.
+      float normal[kMaxManifoldPoints];
+      Vec3 friction[kMaxManifoldPoints];
+      for (int i = 0; i < c.manifold.count; ++i) {
+        const ContactPoint& np = c.manifold.points[i];
+        int match = -1;
+        float best = kWarmStartMatchDistance * kWarmStartMatchDistance;
+        for (int j = 0; j < old.count; ++j) {
+          if (old.points[j].id == np.id) {
+            match = j;
+            break;
+          }
+          const float d2 = (old.points[j].position - np.position).squaredNorm();
+          if (d2 < best) {
+            best = d2;
+            match = j;
+          }
+        }
+        normal[i] = match >= 0 ? c.normalImpulse[match] : 0.0f;
+        friction[i] = match >= 0 ? c.frictionImpulse[match] : Vec3::Zero();
+      }
+      for (int i = 0; i < c.manifold.count; ++i) {
+        c.normalImpulse[i] = normal[i];
+        c.frictionImpulse[i] = friction[i];
+      }
+      if ((old.count > 0) != (c.manifold.count > 0)) wakeFlag_[ci] = 1;
+    }
+  });
+
+  // Destroy contacts whose fat boxes separated; wake sleeping bodies whose contacts changed.
+  for (uint32_t ci = 0; ci < contacts_.size();) {
+    Contact& c = contacts_[ci];
+    if (wakeFlag_[ci]) {
+      wake(c.a);
+      wake(c.b);
+    }
+    if (!c.touching() && !broadPhase_.fatOverlap(c.a, c.b)) {
+      pairs_.erase(PairMap::key(c.a, c.b));
+      const uint32_t last = static_cast<uint32_t>(contacts_.size() - 1);
+      if (ci != last) {
+        contacts_[ci] = contacts_[last];
+        wakeFlag_[ci] = wakeFlag_[last];
+        pairs_.set(PairMap::key(contacts_[ci].a, contacts_[ci].b), ci);
+      }
+      contacts_.pop_back();
+      wakeFlag_.pop_back();
+      continue;
+    }
+    ++ci;
+  }
+}
+
+// ---- solve -------------------------------------------------------------------------------
+
+SolverParams World::solverParams() const {
+  SolverParams sp;
+  sp.dt = settings_.dt;
+  sp.omega = settings_.omega;
+  sp.beta = settings_.beta;
+  sp.slop = settings_.slop;
+  sp.restitutionThreshold = settings_.restitutionThreshold;
+  sp.warmStart = settings_.warmStart;
+  return sp;
+}
+
+int World::relaxIterationsFor(int iterations) {
+  // A quarter of the iterations (at least one) relax: enough to take the push-out velocity away.
+  return iterations >= 2 ? std::max(1, iterations / 4) : 0;
+}
+
+template <class F>
+void World::forEachIsland(F&& f) {
+  const uint32_t batches = static_cast<uint32_t>(batchStart_.size()) - 1;
+  parallelFor(batches, 1, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t b = begin; b < end; ++b)
+      for (uint32_t k = batchStart_[b]; k < batchStart_[b + 1]; ++k) f(k);
+  });
+}
+
+void World::solveIslands(int iterations) {
+  const SolverParams sp = solverParams();
+  const float tol = settings_.residualTolerance;
+  const int iMin = std::min(controller_->iMin, iterations);
+  forEachIsland([&](uint32_t k) {
+    const Island& isl = islands_.islands[k];
+    ContactConstraint* cs = constraints_.data() + isl.firstContact;
+    const uint32_t n = isl.contactCount;
+    for (uint32_t j = 0; j < n; ++j) {
+      const uint32_t ci = islands_.contacts[isl.firstContact + j];
+      prepareContact(bodies_, contacts_[ci], ci, sp, cs[j]);
+    }
+    if (sp.warmStart) warmStart(bodies_, cs, n);
+    int it = 0;
+    float residual = 0.0f;
+    while (it < iterations) {
+      residual = solveIteration(bodies_, cs, n, sp.omega, true);
+      ++it;
+      // Converged islands stop: precision nobody can see is not paid for.
+      if (tol > 0.0f && it >= iMin && residual < tol) break;
+    }
+    islandIterations_[k] = n > 0 ? it : 0;
+    islandResidual_[k] = residual;
+  });
+}
+
+void World::relaxIslands(int relaxIterations) {
+  const float omega = settings_.omega;
+  forEachIsland([&](uint32_t k) {
+    const Island& isl = islands_.islands[k];
+    ContactConstraint* cs = constraints_.data() + isl.firstContact;
+    const uint32_t n = isl.contactCount;
+    for (int it = 0; it < relaxIterations; ++it) solveIteration(bodies_, cs, n, omega, false);
+    storeImpulses(cs, n, contacts_.data());
+    if (n > 0) islandIterations_[k] += relaxIterations;
+  });
+}
+
+double World::measureSolveError(int iterations) {
+  // e = |v_I - v*|_M / |v_0 - v*|_M over the dynamic bodies of the islands (DESIGN.md §5).
+  const uint32_t n = bodyCount();
+  const auto t0 = Clock::now();
+  saveV_ = bodies_.v;
+  saveW_ = bodies_.w;
+  const float tol = settings_.residualTolerance;
+  settings_.residualTolerance = 1e-6f;
+  const int iMin = controller_->iMin;
+  controller_->iMin = 1;
+  solveIslands(1000);
+  controller_->iMin = iMin;
+  settings_.residualTolerance = tol;
+  refV_ = bodies_.v;
+  refW_ = bodies_.w;
+  bodies_.v = saveV_;
+  bodies_.w = saveW_;
+  measurementMs_ = msSince(t0);  // the reference solve is measurement, not step time
+  solveIslands(iterations);
+  double num = 0.0, den = 0.0;
+  for (uint32_t i = 0; i < n; ++i) {
+    if (bodies_.kind[i] != BodyKind::Dynamic || bodies_.asleep[i]) continue;
+    const Mat3 I = bodies_.xf[i].q.toRotationMatrix() * bodies_.inertiaLocal[i] *
+                   bodies_.xf[i].q.toRotationMatrix().transpose();
+    auto norm2 = [&](const Vec3& dv, const Vec3& dw) {
+      return double(bodies_.mass[i]) * dv.squaredNorm() + double(dw.dot(I * dw));
+    };
+    num += norm2(bodies_.v[i] - refV_[i], bodies_.w[i] - refW_[i]);
+    den += norm2(saveV_[i] - refV_[i], saveW_[i] - refW_[i]);
+  }
+  return den > 0.0 ? std::sqrt(num / den) : 0.0;
+}
+
+void World::solve(int iterations) {
+  // Iterations with position correction now; the relax iterations run after integration.
+  const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
+  constraints_.resize(islands_.contacts.size());
+  islandIterations_.assign(m, 0);
+  islandResidual_.assign(m, 0.0f);
+  // Islands come largest first: big ones get a task each, small ones are batched.
+  batchStart_.clear();
+  batchStart_.push_back(0);
+  uint32_t acc = 0;
+  for (uint32_t k = 0; k < m; ++k) {
+    acc += islands_.islands[k].rows;
+    if (acc >= kBatchRows || k + 1 == m) {
+      batchStart_.push_back(k + 1);
+      acc = 0;
+    }
+  }
+  if (m == 0) batchStart_.push_back(0);
+
+  const bool measure = solveErrorEvery_ > 0 && stepCount_ % uint64_t(solveErrorEvery_) == 0 && m > 0;
+  if (measure) stats_.solveError = measureSolveError(iterations);
+  else solveIslands(iterations);
+}
+
+void World::summariseIterations() {
+  const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
+  int lo = 1 << 30, hi = 0;
+  double sum = 0.0;
+  uint32_t counted = 0;
+  float residual = 0.0f;
+  uint64_t rowIt = 0;
+  for (uint32_t k = 0; k < m; ++k) {
+    const Island& isl = islands_.islands[k];
+    if (isl.contactCount == 0) continue;
+    lo = std::min(lo, islandIterations_[k]);
+    hi = std::max(hi, islandIterations_[k]);
+    sum += islandIterations_[k];
+    ++counted;
+    residual = std::max(residual, islandResidual_[k]);
+    rowIt += uint64_t(isl.rows) * uint64_t(islandIterations_[k]);
+  }
+  stats_.iterationsMin = counted ? lo : 0;
+  stats_.iterationsMax = counted ? hi : 0;
+  stats_.iterationsMean = counted ? sum / counted : 0.0;
+  stats_.residual = residual;
+  stats_.rowIterations = rowIt;
+}
+
+// ---- sleep -------------------------------------------------------------------------------
+
+void World::putIslandToSleep(const Island& isl) {
+  int32_t set;
+  if (!freeSleepSets_.empty()) {
+    set = freeSleepSets_.back();
+    freeSleepSets_.pop_back();
+  } else {
+    set = static_cast<int32_t>(sleepSets_.size());
+    sleepSets_.emplace_back();
+  }
+  auto& members = sleepSets_[set];
+  for (uint32_t j = 0; j < isl.bodyCount; ++j) {
+    const uint32_t i = islands_.bodies[isl.firstBody + j];
+    bodies_.asleep[i] = 1;
+    bodies_.sleepSet[i] = set;
+    bodies_.v[i].setZero();
+    bodies_.w[i].setZero();
+    members.push_back(i);
+  }
+}
+
+void World::detectSleep() {
+  for (const Island& isl : islands_.islands) {
+    float minRest = 1e30f;
+    for (uint32_t j = 0; j < isl.bodyCount; ++j)
+      minRest = std::min(minRest, bodies_.restTime[islands_.bodies[isl.firstBody + j]]);
+    if (minRest >= settings_.timeToSleep) putIslandToSleep(isl);
+  }
+}
+
+// ---- step --------------------------------------------------------------------------------
+
+void World::step() {
+  const auto t0 = Clock::now();
+  const uint32_t n = bodyCount();
+  const float dt = settings_.dt;
+  stats_ = StepStats{};
+  measurementMs_ = 0.0;
+  stats_.step = stepCount_;
+  stats_.budgetMs = settings_.budgetMs;
+  stats_.stages = kStageBroadPhase | kStageNarrowPhase | kStageSolve;
+
+  // 1. External forces.
+  parallelFor(n, 2048, [&](uint32_t b, uint32_t e) { integrateVelocities(bodies_, b, e, settings_.gravity, dt); });
+  if (!water_.empty()) {
+    stats_.stages |= kStageBuoyancy;
+    for (const WaterVolume& w : water_) applyBuoyancy(bodies_, volume_, bounds_, w, settings_.gravity, dt);
+  }
+
+  // 2-3. Collision detection.
+  updateBroadPhase();
+  narrowPhase();
+  if (hasMesh_) stats_.stages |= kStageMeshTests;
+  stats_.collisionMs = msSince(t0);
+
+  // 4. Islands.
+  islandBuilder_.build(bodies_, contacts_, islands_);
+  std::fill(islandOfBody_.begin(), islandOfBody_.end(), -1);
+  for (uint32_t k = 0; k < islands_.islands.size(); ++k) {
+    const Island& isl = islands_.islands[k];
+    for (uint32_t j = 0; j < isl.bodyCount; ++j) islandOfBody_[islands_.bodies[isl.firstBody + j]] = int32_t(k);
+  }
+
+  // 5. Iteration count.
+  ControlContext ctx;
+  ctx.step = stepCount_;
+  ctx.budgetMs = settings_.budgetMs;
+  ctx.elapsedMs = msSince(t0);
+  ctx.totalRows = islands_.totalRows;
+  ctx.largestRows = islands_.largestRows;
+  ctx.islands = static_cast<uint32_t>(islands_.islands.size());
+  ctx.bodies = static_cast<uint32_t>(islands_.bodies.size());
+  for (const Contact& c : contacts_) ctx.contactPoints += uint32_t(c.manifold.count);
+  ctx.threads = settings_.threads;
+  const int iterations = std::clamp(controller_->choose(ctx), controller_->iMin, controller_->iMax);
+  stats_.iterationsChosen = iterations;
+
+  // 6. Parallel constraint solving.
+  const auto t1 = Clock::now();
+  const int relax = relaxIterationsFor(iterations);
+  solve(iterations - relax);
+  stats_.solveMs = msSince(t1) - measurementMs_;
+  SolveObservation obs;
+  obs.solveMs = stats_.solveMs;
+  obs.rowIterations = stats_.rowIterations;
+  obs.criticalRowIterations = uint64_t(islands_.largestRows) * uint64_t(stats_.iterationsMax);
+  obs.iterations = iterations;
+
+  // 7. Integration and sleep.
+  const auto t2 = Clock::now();
+  parallelFor(n, 2048, [&](uint32_t b, uint32_t e) {
+    integratePositions(bodies_, b, e, dt, settings_.sleepLinear, settings_.sleepAngular);
+  });
+  const auto t3 = Clock::now();
+  relaxIslands(relax);
+  const double relaxMs = msSince(t3);
+  stats_.solveMs += relaxMs;
+  summariseIterations();
+  if (settings_.sleeping) {
+    stats_.stages |= kStageSleep;
+    detectSleep();
+  }
+  stats_.integrateMs = msSince(t2) - relaxMs;
+
+  // Counters.
+  for (uint32_t i = 0; i < n; ++i) {
+    if (bodies_.kind[i] != BodyKind::Dynamic) continue;
+    if (bodies_.asleep[i]) ++stats_.sleepingBodies;
+    else ++stats_.awakeBodies;
+  }
+  for (const Contact& c : contacts_) {
+    if (!c.touching()) continue;
+    ++stats_.contacts;
+    stats_.contactPoints += uint32_t(c.manifold.count);
+  }
+  stats_.islands = static_cast<uint32_t>(islands_.islands.size());
+  stats_.largestIsland = islands_.largestBodies;
+  stats_.totalMs = msSince(t0) - measurementMs_;
+  stats_.deadlineMiss = settings_.budgetMs > 0.0 && stats_.totalMs > settings_.budgetMs;
+  obs.integrateMs = stats_.integrateMs;
+  obs.totalMs = stats_.totalMs;
+  controller_->observe(ctx, obs);
+  ++stepCount_;
+}
+
+// ---- queries -----------------------------------------------------------------------------
+
+uint64_t World::stateHash() const {
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&](float f) {
+    uint32_t u;
+    std::memcpy(&u, &f, sizeof u);
+    for (int k = 0; k < 4; ++k) {
+      h ^= (u >> (8 * k)) & 0xffu;
+      h *= 1099511628211ull;
+    }
+  };
+  for (const Transform& xf : bodies_.xf) {
+    mix(xf.p.x()); mix(xf.p.y()); mix(xf.p.z());
+    mix(xf.q.x()); mix(xf.q.y()); mix(xf.q.z()); mix(xf.q.w());
+  }
+  return h;
+}
+
+double World::kineticEnergy() const {
+  double e = 0.0;
+  for (uint32_t i = 0; i < bodyCount(); ++i) {
+    if (bodies_.kind[i] != BodyKind::Dynamic) continue;
+    const Vec3 wb = bodies_.xf[i].q.conjugate() * bodies_.w[i];
+    e += 0.5 * bodies_.mass[i] * bodies_.v[i].squaredNorm() + 0.5 * double(wb.dot(bodies_.inertiaLocal[i] * wb));
+  }
+  return e;
+}
+
+double World::potentialEnergy() const {
+  double e = 0.0;
+  for (uint32_t i = 0; i < bodyCount(); ++i)
+    if (bodies_.kind[i] == BodyKind::Dynamic) e -= bodies_.mass[i] * double(settings_.gravity.dot(bodies_.xf[i].p));
+  return e;
+}
+
+}  // namespace haif

@@ -1,0 +1,152 @@
+// The physics world: bodies, shapes, contacts, and the step pipeline of DESIGN.md §2.
+// It lives in src/haif (not src/core) because the step uses islands and the iteration
+// controller, and dependencies must point one way: haif -> dynamics -> collision -> core.
+#pragma once
+
+#include "collision/broad_phase.h"
+#include "collision/pair_map.h"
+#include "collision/shape.h"
+#include "core/body_store.h"
+#include "dynamics/buoyancy.h"
+#include "dynamics/contact.h"
+#include "dynamics/contact_solver.h"
+#include "haif/islands.h"
+#include "haif/iteration_controller.h"
+#include "haif/step_stats.h"
+
+#include <tbb/task_arena.h>
+
+#include <memory>
+#include <vector>
+
+namespace haif {
+
+struct WorldSettings {
+  float dt = 1.0f / 60.0f;
+  Vec3 gravity = Vec3(0.0f, -9.81f, 0.0f);
+  int iterations = 10;              ///< used by the default (fixed) controller
+  float omega = 1.0f;               ///< SOR relaxation in [1, 2)
+  float beta = 0.2f;                ///< Baumgarte factor
+  float slop = 0.005f;              ///< penetration allowed before correction (m)
+  float restitutionThreshold = 1.0f;///< m/s
+  float contactMargin = 0.02f;      ///< speculative distance (m) beyond which points are not reported
+  bool warmStart = true;
+  bool sleeping = false;
+  float timeToSleep = 0.5f;         ///< s an island must rest before it sleeps
+  float sleepLinear = 0.05f;        ///< m/s
+  float sleepAngular = 0.05f;       ///< rad/s
+  float residualTolerance = 0.0f;   ///< islands stop iterating below this velocity correction (0: never)
+  double budgetMs = 0.0;            ///< frame budget given to the controller (0: none)
+  int threads = 1;
+};
+
+struct BodyDef {
+  BodyKind kind = BodyKind::Dynamic;
+  Shape shape;
+  Transform xf;
+  Vec3 linearVelocity = Vec3::Zero();
+  Vec3 angularVelocity = Vec3::Zero();
+  float mass = 0.0f;          ///< > 0 overrides density
+  float density = 1000.0f;
+  float friction = 0.6f;
+  float restitution = 0.0f;
+  float linearDamping = 0.0f;
+  float angularDamping = 0.0f;
+};
+
+class World {
+ public:
+  explicit World(const WorldSettings& settings = {});
+  ~World();
+  World(const World&) = delete;
+  World& operator=(const World&) = delete;
+
+  /// Adds a body; returns its id (dense, in insertion order).
+  uint32_t addBody(const BodyDef& def);
+  void addWater(const WaterVolume& w) { water_.push_back(w); }
+  /// Replaces the iteration controller (default: fixed at settings.iterations).
+  void setController(std::unique_ptr<IterationController> c);
+  IterationController& controller() { return *controller_; }
+  /// Worker threads used by the parallel stages (1 = everything on the calling thread).
+  void setThreads(int threads);
+  int threads() const { return settings_.threads; }
+  /// Measure DESIGN §5 solve error every `every` steps (0: never). Costs a converged solve.
+  void setSolveErrorInterval(int every) { solveErrorEvery_ = every; }
+
+  /// Advances the world by settings().dt.
+  void step();
+  /// Of I iterations, how many are relax iterations (run after integration, without position
+  /// correction, so the push-out velocity does not become kinetic energy).
+  static int relaxIterationsFor(int iterations);
+
+  const WorldSettings& settings() const { return settings_; }
+  WorldSettings& settings() { return settings_; }
+  const BodyStore& bodies() const { return bodies_; }
+  BodyStore& bodies() { return bodies_; }
+  uint32_t bodyCount() const { return static_cast<uint32_t>(bodies_.size()); }
+  const Shape& shape(uint32_t body) const { return shapes_[body]; }
+  const std::vector<Contact>& contacts() const { return contacts_; }
+  const IslandSet& islands() const { return islands_; }
+  /// Island index (into islands().islands) a body was solved in during the last step; -1 if none.
+  int32_t islandOf(uint32_t body) const { return body < islandOfBody_.size() ? islandOfBody_[body] : -1; }
+  const StepStats& lastStats() const { return stats_; }
+  uint64_t stepCount() const { return stepCount_; }
+  bool hasWater() const { return !water_.empty(); }
+
+  /// FNV-1a hash of every body's position and orientation bits: equal states give equal hashes.
+  uint64_t stateHash() const;
+  /// Kinetic energy (J) and potential energy relative to y = 0 (J) of the dynamic bodies.
+  double kineticEnergy() const;
+  double potentialEnergy() const;
+  /// Wakes a sleeping body and the sleeping island it belongs to.
+  void wake(uint32_t body);
+
+ private:
+  void updateBroadPhase();
+  void narrowPhase();
+  void solve(int iterations);
+  void solveIslands(int iterations);
+  void relaxIslands(int relaxIterations);
+  void summariseIterations();
+  SolverParams solverParams() const;
+  template <class F> void forEachIsland(F&& f);
+  double measureSolveError(int iterations);
+  void detectSleep();
+  void putIslandToSleep(const Island& isl);
+  template <class F> void parallelFor(uint32_t n, uint32_t grain, F&& f);
+
+  WorldSettings settings_;
+  BodyStore bodies_;
+  std::vector<Shape> shapes_;
+  std::vector<float> volume_;
+  std::vector<Aabb> bounds_;
+  std::vector<WaterVolume> water_;
+  bool hasMesh_ = false;
+
+  BroadPhase broadPhase_;
+  PairMap pairs_;
+  std::vector<Contact> contacts_;
+  std::vector<uint8_t> wakeFlag_;     // per contact: touching state changed this step
+
+  IslandBuilder islandBuilder_;
+  IslandSet islands_;
+  std::vector<int32_t> islandOfBody_;
+  std::vector<ContactConstraint> constraints_;
+  std::vector<int> islandIterations_;
+  std::vector<float> islandResidual_;
+  std::vector<uint32_t> batchStart_;  // island batches for parallel solving
+
+  std::vector<std::vector<uint32_t>> sleepSets_;
+  std::vector<int32_t> freeSleepSets_;
+
+  std::unique_ptr<IterationController> controller_;
+  std::unique_ptr<tbb::task_arena> arena_;
+  int solveErrorEvery_ = 0;
+  double measurementMs_ = 0.0;  // time of this step's reference solve, excluded from its timings
+  std::vector<Vec3> saveV_, saveW_, refV_, refW_;
+
+  StepStats stats_;
+  uint64_t stepCount_ = 0;
+};
+
+}  // namespace haif

@@ -1,1 +1,0 @@
-// Tools land here (placeholder so the library has a source).

@@ -1,0 +1,141 @@
+#include "tools/run_report.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace haif {
+
+namespace {
+
+std::string stageNames(uint32_t s) {
+  static const char* names[] = {"broad", "narrow", "buoyancy", "mesh", "joints", "solve", "sleep"};
+  std::string out;
+  for (int i = 0; i < 7; ++i) {
+    if (!(s & (1u << i))) continue;
+    if (!out.empty()) out += '|';
+    out += names[i];
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string statsCsv(const std::vector<StepStats>& steps) {
+  std::string out =
+      "step,collision_ms,solve_ms,integrate_ms,total_ms,budget_ms,deadline_miss,iterations_chosen,"
+      "iterations_min,iterations_mean,iterations_max,row_iterations,residual,solve_error,islands,"
+      "largest_island,awake_bodies,sleeping_bodies,contacts,contact_points,new_pairs,stages\n";
+  char line[512];
+  for (const StepStats& s : steps) {
+    char err[32];
+    if (std::isnan(s.solveError)) err[0] = '\0';
+    else std::snprintf(err, sizeof err, "%.6g", s.solveError);
+    std::snprintf(line, sizeof line,
+                  "%llu,%.4f,%.4f,%.4f,%.4f,%.3f,%d,%d,%d,%.3f,%d,%llu,%.6g,%s,%u,%u,%u,%u,%u,%u,%u,%s\n",
+                  (unsigned long long)s.step, s.collisionMs, s.solveMs, s.integrateMs, s.totalMs, s.budgetMs,
+                  s.deadlineMiss ? 1 : 0, s.iterationsChosen, s.iterationsMin, s.iterationsMean, s.iterationsMax,
+                  (unsigned long long)s.rowIterations, double(s.residual), err, s.islands, s.largestIsland,
+                  s.awakeBodies, s.sleepingBodies, s.contacts, s.contactPoints, s.newPairs, stageNames(s.stages).c_str());
+    out += line;
+  }
+  return out;
+}
+
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t k = std::min(v.size() - 1, static_cast<size_t>(std::ceil(q * double(v.size()))) - (q > 0 ? 1 : 0));
+  return v[k];
+}
+
+std::string summaryJson(const RunInfo& info, const std::vector<StepStats>& steps, const RunMetrics& m,
+                        const World& world) {
+  std::vector<double> ms;
+  ms.reserve(steps.size());
+  double misses = 0, itSum = 0, errSum = 0;
+  int itMin = steps.empty() ? 0 : 1 << 30, itMax = 0, errCount = 0;
+  for (const StepStats& s : steps) {
+    ms.push_back(s.totalMs);
+    misses += s.deadlineMiss ? 1 : 0;
+    itSum += s.iterationsChosen;
+    itMin = std::min(itMin, s.iterationsChosen);
+    itMax = std::max(itMax, s.iterationsChosen);
+    if (!std::isnan(s.solveError)) {
+      errSum += s.solveError;
+      ++errCount;
+    }
+  }
+  const double n = steps.empty() ? 1.0 : double(steps.size());
+  nlohmann::ordered_json j;
+  j["scene"] = info.scene;
+  j["bodies"] = info.bodies;
+  j["steps"] = steps.size();
+  j["threads"] = info.threads;
+  j["mode"] = info.mode;
+  j["budget_ms"] = info.budgetMs;
+  j["ms_per_step_median"] = quantile(ms, 0.5);
+  j["ms_per_step_p95"] = quantile(ms, 0.95);
+  j["ms_per_step_p99"] = quantile(ms, 0.99);
+  j["deadline_miss_rate"] = info.budgetMs > 0 ? misses / n : 0.0;
+  j["iterations_mean"] = itSum / n;
+  j["iterations_min"] = itMin;
+  j["iterations_max"] = itMax;
+  j["max_penetration_m"] = m.maxPenetration();
+  j["max_penetration_fraction"] = m.maxPenetrationFraction();
+  j["rms_penetration_m"] = m.rmsPenetration();
+  j["mean_drop_m"] = m.meanDrop(world);
+  j["max_drop_m"] = m.maxDrop(world);
+  j["rms_velocity_last_s"] = m.rmsVelocityLastSecond();
+  if (errCount > 0) j["solve_error_mean"] = errSum / errCount;
+  else j["solve_error_mean"] = nullptr;
+  j["solve_error_samples"] = errCount;
+  j["energy_drift_relative"] = m.energyDriftRelative(world);
+  j["nan_detected"] = m.nanDetected();
+  char hash[32];
+  std::snprintf(hash, sizeof hash, "%016llx", (unsigned long long)info.stateHash);
+  j["state_hash"] = hash;
+  if (info.renderMsPerFrameMedian >= 0) j["render_ms_per_frame_median"] = info.renderMsPerFrameMedian;
+  return j.dump(2) + "\n";
+}
+
+bool readChosenIterations(const std::string& path, std::vector<int>& out, std::string& error) {
+  std::ifstream in(path);
+  if (!in) {
+    error = path + ": cannot open replay log";
+    return false;
+  }
+  std::string line;
+  if (!std::getline(in, line)) {
+    error = path + ":1: empty replay log";
+    return false;
+  }
+  int column = -1, k = 0;
+  std::stringstream hs(line);
+  for (std::string cell; std::getline(hs, cell, ','); ++k)
+    if (cell == "iterations_chosen") column = k;
+  if (column < 0) {
+    error = path + ":1: no iterations_chosen column (is this a HAIF stats.csv?)";
+    return false;
+  }
+  out.clear();
+  for (int row = 2; std::getline(in, line); ++row) {
+    std::stringstream ls(line);
+    std::string cell;
+    for (int c = 0; c <= column && std::getline(ls, cell, ','); ++c) {}
+    char* end = nullptr;
+    const long v = std::strtol(cell.c_str(), &end, 10);
+    if (cell.empty() || *end != '\0' || v < 1 || v > 100000) {
+      error = path + ":" + std::to_string(row) + ": iterations_chosen: not a positive integer ('" + cell + "')";
+      return false;
+    }
+    out.push_back(int(v));
+  }
+  return true;
+}
+
+}  // namespace haif
