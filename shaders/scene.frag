@@ -1,0 +1,97 @@
+#version 330 core
+// Sun with PCF shadows + hemispheric ambient, an anti-aliased fading grid on the ground, distance
+// fog towards the horizon colour, and sRGB encoding at the end (lighting itself is linear).
+
+in vec3 vWorldPos;
+in vec3 vNormal;
+in vec3 vColor;
+in float vEmissive;
+in vec4 vLightPos;
+in vec3 vUnitPos;
+flat in vec3 vScale;
+
+uniform sampler2DShadow uShadowMap;
+uniform float uShadowTexel;     // 1 / shadow map size
+uniform int uShadowsOn;         // 0 when nothing casts
+uniform vec3 uSunDir;           // unit vector towards the sun
+uniform vec3 uSunColor;         // linear radiance
+uniform vec3 uSkyAmbient;       // ambient from above
+uniform vec3 uGroundAmbient;    // ambient bounced from below
+uniform vec3 uEye;
+uniform vec3 uFogColor;         // linear horizon colour
+uniform float uFogDistance;     // distance where fog reaches ~63 %
+uniform int uSurface;           // 0 body, 1 ground, 2 box (edge lines)
+uniform vec3 uGroundColor;      // linear ground albedo
+uniform float uGridSpacing;     // minor grid spacing in metres
+uniform float uGridFade;        // distance where the grid has faded out
+
+out vec4 fragColor;
+
+float shadowFactor() {
+  if (uShadowsOn == 0) return 1.0;
+  vec3 p = vLightPos.xyz / vLightPos.w * 0.5 + 0.5;
+  if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0 || p.z >= 1.0) return 1.0;
+  // One hardware-filtered comparison = bilinear 2x2 PCF. Each extra tap costs several ms per
+  // frame on llvmpipe, so the softness comes from filtering, not from many taps.
+  return texture(uShadowMap, p);
+}
+
+// Anti-aliased grid: minor lines every uGridSpacing, major lines every 10. Derivatives are taken
+// once; lines denser than a few pixels fade out instead of turning into moire.
+float gridLines(vec2 c) {
+  vec2 w = max(fwidth(c), vec2(1e-5));
+  vec2 dMinor = abs(fract(c - 0.5) - 0.5) / w;
+  vec2 cMajor = c * 0.1;
+  vec2 dMajor = abs(fract(cMajor - 0.5) - 0.5) / (w * 0.1);
+  float wMax = max(w.x, w.y);
+  float minor = (1.0 - min(min(dMinor.x, dMinor.y), 1.0)) * (1.0 - smoothstep(0.15, 0.45, wMax));
+  float major = (1.0 - min(min(dMajor.x, dMajor.y) / 1.6, 1.0)) * (1.0 - smoothstep(1.5, 4.5, wMax));
+  return max(minor * 0.35, major * 0.6);
+}
+
+// Linear -> sRGB with a sqrt-only fit (within 3/255, mostly < 1/255); pow() is slow on llvmpipe.
+vec3 encodeSrgb(vec3 c) {
+  c = clamp(c, 0.0, 1.0);
+  vec3 s1 = sqrt(c), s2 = sqrt(s1), s3 = sqrt(s2);
+  return clamp(0.585122381 * s1 + 0.783140355 * s2 - 0.368262736 * s3, 0.0, 1.0);
+}
+
+void main() {
+  vec3 n = normalize(vNormal);
+  if (!gl_FrontFacing) n = -n;  // open triangle meshes seen from behind
+  vec3 albedo = vColor;
+  float dist = length(vWorldPos - uEye);
+
+  if (uSurface == 1) {
+    vec2 c = vWorldPos.xz / uGridSpacing;
+    float fade = 1.0 - smoothstep(uGridFade * 0.35, uGridFade, dist);
+    albedo = uGroundColor * (1.0 - gridLines(c) * fade);
+  } else if (uSurface == 2) {
+    // Darken near box edges (in metres) so stacked boxes of similar colour stay readable.
+    vec3 a = abs(vUnitPos);
+    vec3 edgeDist = (1.0 - a) * vScale;
+    // Ignore the axis of the face we are on (its |unit coordinate| is 1).
+    vec3 onFace = step(0.999, a);
+    edgeDist += onFace * 1e3;
+    float e = min(min(edgeDist.x, edgeDist.y), edgeDist.z);
+    float px = fwidth(e);
+    float width = 0.03 * min(min(vScale.x, vScale.y), vScale.z);
+    float edge = 1.0 - smoothstep(width, width + px * 1.5, e);
+    albedo *= 1.0 - 0.35 * edge;
+  }
+
+  float ndl = max(dot(n, uSunDir), 0.0);
+  float shadow = ndl > 0.0 ? shadowFactor() : 0.0;
+  vec3 ambient = mix(uGroundAmbient, uSkyAmbient, n.y * 0.5 + 0.5);
+  vec3 h = normalize(uSunDir + normalize(uEye - vWorldPos));
+  float nh = max(dot(n, h), 0.0);
+  float nh8 = nh * nh; nh8 *= nh8; nh8 *= nh8;  // (n.h)^48 by squaring, cheaper than pow()
+  float spec = nh8 * nh8 * nh8 * nh8 * nh8 * nh8 * 0.12 * (uSurface == 1 ? 0.0 : 1.0);
+  vec3 lit = albedo * (ambient + uSunColor * ndl * shadow) + uSunColor * spec * shadow;
+  lit = mix(lit, vColor, vEmissive);
+
+  // Gaussian fog: the scene itself stays clear, the far ground melts into the horizon.
+  float fog = 1.0 - exp(-(dist * dist) / (uFogDistance * uFogDistance));
+  lit = mix(lit, uFogColor, fog * (uSurface == 1 ? 1.0 : 0.5));
+  fragColor = vec4(encodeSrgb(lit), 1.0);
+}

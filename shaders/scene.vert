@@ -1,0 +1,44 @@
+#version 330 core
+// Instanced bodies and the ground. Per-vertex: unit shape; per-instance: rigid transform, scale
+// and colour. Lighting happens in world space in scene.frag.
+
+layout(location = 0) in vec3 aPos;       // unit-shape position
+layout(location = 1) in vec3 aNormal;    // unit-shape normal
+layout(location = 2) in float aCapSide;  // +1/-1 on capsule halves, 0 otherwise
+layout(location = 3) in vec3 iPos;       // world position
+layout(location = 4) in vec4 iQuat;      // orientation quaternion (x, y, z, w)
+layout(location = 5) in vec3 iScale;     // half extents / radius
+layout(location = 6) in float iStretch;  // capsule half height
+layout(location = 7) in vec4 iColor;     // linear rgb, a = emissive amount (markers)
+
+uniform mat4 uViewProj;
+uniform mat4 uLightViewProj;
+uniform float uShadowNormalOffset;  // metres to push the shadow lookup along the normal (kills acne)
+
+out vec3 vWorldPos;
+out vec3 vNormal;
+out vec3 vColor;
+out float vEmissive;
+out vec4 vLightPos;
+out vec3 vUnitPos;       // position on the unit shape, for box edge lines
+flat out vec3 vScale;
+
+vec3 rotate(vec4 q, vec3 v) {
+  vec3 t = 2.0 * cross(q.xyz, v);
+  return v + q.w * t + cross(q.xyz, t);
+}
+
+void main() {
+  vec3 local = aPos * iScale + vec3(0.0, aCapSide * iStretch, 0.0);
+  vec3 world = iPos + rotate(iQuat, local);
+  // Inverse-scale the normal so non-uniform boxes keep correct face normals.
+  vec3 n = normalize(rotate(iQuat, aNormal / max(iScale, vec3(1e-6))));
+  vWorldPos = world;
+  vNormal = n;
+  vColor = iColor.rgb;
+  vEmissive = iColor.a;
+  vLightPos = uLightViewProj * vec4(world + n * uShadowNormalOffset, 1.0);
+  vUnitPos = aPos;
+  vScale = iScale;
+  gl_Position = uViewProj * vec4(world, 1.0);
+}

@@ -1,0 +1,271 @@
+#include "render/chart.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace haif::render {
+namespace {
+
+// 1-2-5 step that gives about `target` intervals over span.
+double niceStep(double span, int target) {
+  const double raw = span / std::max(1, target);
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  const double f = raw / mag;
+  return mag * (f <= 1.0 ? 1.0 : f <= 2.0 ? 2.0 : f <= 5.0 ? 5.0 : 10.0);
+}
+
+std::string formatTick(double v, double step) {
+  char buf[32];
+  if (std::fabs(v) < step * 1e-6) v = 0.0;
+  const int decimals = std::clamp(static_cast<int>(std::ceil(-std::log10(step) - 1e-9)), 0, 6);
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+std::string formatDecade(int e) {
+  char buf[32];
+  if (e >= -3 && e <= 4)
+    std::snprintf(buf, sizeof buf, "%g", std::pow(10.0, e));
+  else
+    std::snprintf(buf, sizeof buf, "1e%d", e);
+  return buf;
+}
+
+struct Tick {
+  double value;
+  std::string label;
+};
+
+// Linearly interpolated sample at fractional index f (NaN outside or across gaps).
+float sampleAt(const std::vector<float>& v, double f) {
+  if (v.empty() || f < 0.0 || f > static_cast<double>(v.size() - 1)) return NAN;
+  const size_t i = static_cast<size_t>(f);
+  if (i + 1 >= v.size()) return v.back();
+  const float t = static_cast<float>(f - static_cast<double>(i));
+  return v[i] + (v[i + 1] - v[i]) * t;
+}
+
+}  // namespace
+
+float ChartGeometry::yToPixel(double y) const {
+  double t;
+  if (logY)
+    t = (std::log10(std::max(y, 1e-300)) - yLo) / (yHi - yLo);
+  else
+    t = (y - yLo) / (yHi - yLo);
+  return static_cast<float>(bottom - t * (bottom - top));
+}
+
+float ChartGeometry::xToPixel(double x) const {
+  return static_cast<float>(left + (x - xLo) / (xHi - xLo) * (right - left));
+}
+
+ChartGeometry drawChart(Canvas& canvas, TextRenderer& text, int x0, int y0, int x1, int y1,
+                        const ChartSpec& spec, const ChartStyle& style) {
+  canvas.setClip(x0, y0, x1, y1);
+  canvas.fillRect(static_cast<float>(x0), static_cast<float>(y0), static_cast<float>(x1),
+                  static_cast<float>(y1), style.background);
+  const int fs = style.fontSize;
+  const int titleFs = style.compact ? fs : fs + 4;
+
+  // ---- data ranges ----
+  size_t n = 0;
+  for (const auto& s : spec.series) n = std::max(n, s.values.size());
+  ChartGeometry g;
+  g.logY = spec.logY;
+  g.xLo = spec.xStart;
+  g.xHi = spec.xStart + spec.xStep * static_cast<double>(n > 1 ? n - 1 : 1);
+
+  double lo = INFINITY, hi = -INFINITY;
+  auto take = [&](double v) {
+    if (!std::isfinite(v) || (spec.logY && v <= 0.0)) return;
+    lo = std::min(lo, v), hi = std::max(hi, v);
+  };
+  std::vector<double> stackTop(n, 0.0);
+  for (const auto& s : spec.series) {
+    for (size_t i = 0; i < s.values.size(); ++i) {
+      if (s.style == ChartSeries::Style::StackedArea) {
+        if (std::isfinite(s.values[i])) stackTop[i] += s.values[i];
+        take(stackTop[i]);
+      } else {
+        take(s.values[i]);
+      }
+    }
+  }
+  for (const auto& h : spec.hlines) take(h.value);
+  if (!(lo <= hi)) lo = spec.logY ? 1.0 : 0.0, hi = spec.logY ? 10.0 : 1.0;
+
+  std::vector<Tick> yTicks;
+  if (spec.logY) {
+    int eLo = static_cast<int>(std::floor(std::log10(lo))), eHi = static_cast<int>(std::ceil(std::log10(hi)));
+    if (eHi <= eLo) eHi = eLo + 1;
+    g.yLo = eLo, g.yHi = eHi;
+    const int every = std::max(1, (eHi - eLo + (style.compact ? 2 : 6)) / (style.compact ? 3 : 7));
+    for (int e = eLo; e <= eHi; e += every) yTicks.push_back({std::pow(10.0, e), formatDecade(e)});
+  } else {
+    if (!spec.logY) lo = std::min(lo, 0.0);  // times and counts read best from zero
+    if (std::isfinite(spec.yMin)) lo = spec.yMin;
+    if (std::isfinite(spec.yMax)) hi = spec.yMax;
+    if (hi <= lo) hi = lo + 1.0;
+    const double step = niceStep(hi - lo, style.compact ? 3 : 6);
+    if (!std::isfinite(spec.yMin)) lo = std::floor(lo / step + 1e-9) * step;
+    if (!std::isfinite(spec.yMax)) hi = std::ceil(hi / step - 1e-9) * step;
+    if (hi <= lo) hi = lo + step;
+    g.yLo = lo, g.yHi = hi;
+    for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + step * 1e-6; v += step)
+      yTicks.push_back({v, formatTick(v, step)});
+  }
+
+  // ---- layout ----
+  float tickW = 0.f;
+  for (const auto& t : yTicks) tickW = std::max(tickW, text.measure(t.label, fs));
+  const float pad = style.compact ? 4.f : 12.f;
+  g.left = x0 + pad + tickW + 6.f + (style.compact ? 0.f : fs * 1.6f);
+  g.right = x1 - pad - (style.compact ? 2.f : 8.f);
+  g.top = y0 + pad + titleFs * 1.35f;
+  g.bottom = y1 - pad - (style.compact ? 2.f : fs * 3.0f);
+  if (g.right <= g.left + 4.f || g.bottom <= g.top + 4.f) {
+    canvas.resetClip();
+    return g;
+  }
+
+  canvas.fillRect(g.left, g.top, g.right, g.bottom, style.plotBackground);
+  for (const auto& t : yTicks) {
+    const float y = g.yToPixel(t.value);
+    canvas.line(g.left, y, g.right, y, 1.f, style.grid);
+    text.draw(canvas, g.left - 6.f - text.measure(t.label, fs), y + text.ascent(fs) * 0.5f, t.label,
+              fs, style.text);
+  }
+  if (!style.compact) {
+    const double xs = niceStep(g.xHi - g.xLo, 8);
+    for (double v = std::ceil(g.xLo / xs - 1e-9) * xs; v <= g.xHi + xs * 1e-6; v += xs) {
+      const float x = g.xToPixel(v);
+      canvas.line(x, g.top, x, g.bottom, 1.f, style.grid);
+      const std::string label = formatTick(v, xs);
+      text.draw(canvas, x - text.measure(label, fs) * 0.5f, g.bottom + 6.f + text.ascent(fs), label,
+                fs, style.text);
+    }
+  }
+
+  // ---- data, clipped to the plot ----
+  canvas.setClip(static_cast<int>(std::floor(g.left)), static_cast<int>(std::floor(g.top)),
+                 static_cast<int>(std::ceil(g.right)), static_cast<int>(std::ceil(g.bottom)));
+  const double idxPerPx = (g.xHi - g.xLo) / spec.xStep / std::max(1.f, g.right - g.left);
+  for (int px = static_cast<int>(g.left); px < static_cast<int>(std::ceil(g.right)); ++px) {
+    const double f = (px + 0.5 - g.left) * idxPerPx;
+    double base = 0.0;
+    for (const auto& s : spec.series) {
+      if (s.style != ChartSeries::Style::StackedArea) continue;
+      const float v = sampleAt(s.values, f);
+      if (!std::isfinite(v)) continue;
+      canvas.verticalSpan(px, g.yToPixel(base + v), g.yToPixel(base), s.color);
+      base += v;
+    }
+  }
+  for (const auto& h : spec.hlines) {
+    const float y = g.yToPixel(h.value);
+    if (h.dashed)
+      canvas.dashedLine(g.left, y, g.right, y, 1.5f, 7.f, 5.f, h.color);
+    else
+      canvas.line(g.left, y, g.right, y, 1.5f, h.color);
+  }
+  for (const auto& s : spec.series) {
+    if (s.style != ChartSeries::Style::Line) continue;
+    const size_t m = s.values.size();
+    auto X = [&](size_t i) { return g.xToPixel(spec.xStart + spec.xStep * static_cast<double>(i)); };
+    if (static_cast<double>(m) > 2.0 * (g.right - g.left)) {
+      // Denser than the pixels: draw each column's min..max so spikes stay visible.
+      float prevY = NAN;
+      for (int px = static_cast<int>(g.left); px < static_cast<int>(g.right); ++px) {
+        const size_t a = static_cast<size_t>(std::max(0.0, (px - g.left) * idxPerPx));
+        const size_t b = std::min(m, static_cast<size_t>((px + 1 - g.left) * idxPerPx) + 1);
+        float mn = INFINITY, mx = -INFINITY, sum = 0.f;
+        int cnt = 0;
+        for (size_t i = a; i < b; ++i)
+          if (std::isfinite(s.values[i]) && (!spec.logY || s.values[i] > 0.f))
+            mn = std::min(mn, s.values[i]), mx = std::max(mx, s.values[i]), sum += s.values[i], ++cnt;
+        if (!cnt) {
+          prevY = NAN;
+          continue;
+        }
+        const float yMean = g.yToPixel(sum / cnt);
+        canvas.line(px + 0.5f, g.yToPixel(mn), px + 0.5f, g.yToPixel(mx), 1.f, s.color);
+        if (std::isfinite(prevY)) canvas.line(px - 0.5f, prevY, px + 0.5f, yMean, s.width, s.color);
+        prevY = yMean;
+      }
+    } else {
+      for (size_t i = 0; i + 1 < m; ++i) {
+        const float a = s.values[i], b = s.values[i + 1];
+        if (!std::isfinite(a) || !std::isfinite(b) || (spec.logY && (a <= 0.f || b <= 0.f))) continue;
+        canvas.line(X(i), g.yToPixel(a), X(i + 1), g.yToPixel(b), s.width, s.color);
+      }
+      if (m == 1 && std::isfinite(s.values[0]))
+        canvas.line(g.left, g.yToPixel(s.values[0]), g.right, g.yToPixel(s.values[0]), s.width, s.color);
+    }
+  }
+  canvas.setClip(x0, y0, x1, y1);
+
+  // ---- axes, titles ----
+  canvas.line(g.left, g.bottom, g.right, g.bottom, 1.2f, style.axis);
+  canvas.line(g.left, g.top, g.left, g.bottom, 1.2f, style.axis);
+  const float titleBase = y0 + pad + text.ascent(titleFs);
+  const float titleEnd = x0 + pad + text.draw(canvas, x0 + pad, titleBase, spec.title, titleFs, style.text);
+  if (!style.compact) {
+    text.draw(canvas, (g.left + g.right) * 0.5f - text.measure(spec.xLabel, fs) * 0.5f,
+              y1 - pad - 2.f, spec.xLabel, fs, style.text);
+    text.drawVertical(canvas, x0 + pad + text.ascent(fs) + 1.f,
+                      (g.top + g.bottom) * 0.5f + text.measure(spec.yLabel, fs) * 0.5f, spec.yLabel, fs,
+                      style.text);
+  }
+
+  // ---- legend: inside the plot (top right), or on the title row when compact ----
+  struct Entry {
+    std::string name;
+    Rgba color;
+    int kind;  // 0 line, 1 area, 2 dashed
+  };
+  std::vector<Entry> entries;
+  for (const auto& s : spec.series)
+    if (!s.name.empty()) entries.push_back({s.name, s.color, s.style == ChartSeries::Style::Line ? 0 : 1});
+  for (const auto& h : spec.hlines)
+    if (!h.name.empty()) entries.push_back({h.name, h.color, h.dashed ? 2 : 0});
+  if (!entries.empty()) {
+    const float sw = fs * 1.6f, gap = fs * 0.5f;
+    auto swatch = [&](float x, float yMid, const Entry& e) {
+      if (e.kind == 1)
+        canvas.fillRect(x, yMid - fs * 0.35f, x + sw, yMid + fs * 0.35f, e.color);
+      else if (e.kind == 2)
+        canvas.dashedLine(x, yMid, x + sw, yMid, 2.f, 5.f, 3.f, e.color);
+      else
+        canvas.line(x, yMid, x + sw, yMid, 2.f, e.color);
+    };
+    if (style.compact) {
+      float x = titleEnd + fs;
+      for (const auto& e : entries) {
+        swatch(x, titleBase - text.ascent(fs) * 0.4f, e);
+        x += sw + 4.f;
+        x += text.draw(canvas, x, titleBase, e.name, fs, style.text) + gap * 1.5f;
+      }
+    } else {
+      float w = 0.f;
+      for (const auto& e : entries) w = std::max(w, text.measure(e.name, fs));
+      const float lineH = fs * 1.45f;
+      const float bw = sw + 8.f + w + 2.f * gap, bh = lineH * entries.size() + gap;
+      const float bx = g.right - bw - 8.f, by = g.top + 8.f;
+      canvas.fillRect(bx, by, bx + bw, by + bh, Rgba{255, 255, 255, 225});
+      canvas.line(bx, by, bx + bw, by, 1.f, style.grid);
+      canvas.line(bx, by + bh, bx + bw, by + bh, 1.f, style.grid);
+      canvas.line(bx, by, bx, by + bh, 1.f, style.grid);
+      canvas.line(bx + bw, by, bx + bw, by + bh, 1.f, style.grid);
+      for (size_t i = 0; i < entries.size(); ++i) {
+        const float base = by + gap * 0.5f + lineH * (i + 0.5f) + text.ascent(fs) * 0.5f;
+        swatch(bx + gap, base - text.ascent(fs) * 0.5f, entries[i]);
+        text.draw(canvas, bx + gap + sw + 8.f, base, entries[i].name, fs, style.text);
+      }
+    }
+  }
+  canvas.resetClip();
+  return g;
+}
+
+}  // namespace haif::render

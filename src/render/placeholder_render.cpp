@@ -1,1 +1,0 @@
-// Renderer lands here (placeholder so the library has a source).

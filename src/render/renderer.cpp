@@ -1,0 +1,568 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <unordered_map>
+
+#include "render/gl_context.h"
+#include "render/gl_functions.h"
+#include "render/mesh_builder.h"
+#include "render/overlay.h"
+#include "render/palette.h"
+#include "render/png_io.h"
+#include "render/shader_program.h"
+#include "render/text_renderer.h"
+#include "render/view_setup.h"
+
+namespace haif::render {
+namespace {
+
+// Per-instance record: position 3, quaternion 4, scale 3, capsule stretch 1, colour+emissive 4.
+constexpr int kInstanceFloats = 15;
+constexpr GLsizei kInstanceStride = kInstanceFloats * sizeof(float);
+constexpr float kPlaneHalfSize = 1000.f;
+constexpr int kSkyRows = 24;  // must match kRows in shaders/sky.vert
+
+// Ordering of draw groups: bodies first (each group front to back), the ground after them, so
+// early depth testing skips most hidden pixels; fragment work dominates on llvmpipe.
+enum GroupKind : uint32_t { kBox, kSphere, kCapsule, kHull, kTriMesh, kGroundBox, kGroundPlane };
+enum Surface : int { kSurfaceBody = 0, kSurfaceGround = 1, kSurfaceBox = 2 };
+
+struct GpuMesh {
+  GLuint vao = 0, vbo = 0, ibo = 0;
+  GLsizei indexCount = 0;
+  float boundRadius = 1.f;
+};
+
+struct DrawGroup {
+  const GpuMesh* mesh;
+  size_t first, count;
+  int surface;
+  bool cull;          // closed shapes only; open triangle meshes and planes are two-sided
+  bool castsShadow;
+};
+
+struct SortItem {
+  uint32_t kind, meshId;
+  float depth;  // squared distance from the eye, for front-to-back order inside a group
+  uint32_t index;
+};
+
+// Sun from the back left of the default camera so shadows fall towards the viewer's right.
+const Vec3 kSunDir = normalize({-0.45f, 0.82f, -0.30f});
+
+}  // namespace
+
+struct Renderer::Impl {
+  RendererOptions opt;
+  int samples = 1;
+  std::unique_ptr<GlContext> ctx;
+  GlFunctions gl;
+  ShaderProgram sceneProgram, shadowProgram, skyProgram;
+  GpuMesh box, sphere, capsule, plane;
+  std::unordered_map<uint32_t, GpuMesh> meshes;
+  GLuint instanceVbo = 0;
+  size_t instanceCapacity = 0;  // bytes
+  GLuint msaaFbo = 0, msaaColor = 0, msaaDepth = 0, resolveFbo = 0, resolveColor = 0;
+  GLuint shadowFbo = 0, shadowTex = 0, emptyVao = 0;
+  // Reused every frame so steady-state rendering does not allocate.
+  std::vector<float> staging;
+  std::vector<SortItem> order;
+  std::vector<FramingSphere> framing;
+  std::vector<DrawGroup> groups;
+  std::vector<uint8_t> readback;
+  std::unique_ptr<TextRenderer> text;  // created on the first frame with the overlay enabled
+
+  ~Impl() {
+    if (!ctx) return;
+    std::string ignored;
+    ctx->makeCurrent(&ignored);
+    for (GpuMesh* m : {&box, &sphere, &capsule, &plane}) destroyMesh(*m);
+    for (auto& kv : meshes) destroyMesh(kv.second);
+    if (gl.DeleteBuffers) {
+      gl.DeleteBuffers(1, &instanceVbo);
+      gl.DeleteFramebuffers(1, &msaaFbo);
+      gl.DeleteFramebuffers(1, &resolveFbo);
+      gl.DeleteFramebuffers(1, &shadowFbo);
+      gl.DeleteRenderbuffers(1, &msaaColor);
+      gl.DeleteRenderbuffers(1, &msaaDepth);
+      gl.DeleteRenderbuffers(1, &resolveColor);
+      gl.DeleteTextures(1, &shadowTex);
+      gl.DeleteVertexArrays(1, &emptyVao);
+    }
+  }
+
+  void destroyMesh(GpuMesh& m) {
+    if (!gl.DeleteBuffers || !m.vao) return;
+    gl.DeleteVertexArrays(1, &m.vao);
+    gl.DeleteBuffers(1, &m.vbo);
+    gl.DeleteBuffers(1, &m.ibo);
+    m = GpuMesh{};
+  }
+
+  void upload(const MeshData& data, GpuMesh& m) {
+    destroyMesh(m);
+    gl.GenVertexArrays(1, &m.vao);
+    gl.GenBuffers(1, &m.vbo);
+    gl.GenBuffers(1, &m.ibo);
+    gl.BindVertexArray(m.vao);
+    gl.BindBuffer(GL_ARRAY_BUFFER, m.vbo);
+    gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.vertices.size() * sizeof(float)),
+                  data.vertices.data(), GL_STATIC_DRAW);
+    const GLsizei stride = MeshData::kFloatsPerVertex * sizeof(float);
+    gl.EnableVertexAttribArray(0);
+    gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
+    gl.EnableVertexAttribArray(1);
+    gl.VertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(3 * sizeof(float)));
+    gl.EnableVertexAttribArray(2);
+    gl.VertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(6 * sizeof(float)));
+    // Instance attributes: enabled and stepped once per instance; their pointers are set per draw.
+    for (GLuint a = 3; a <= 7; ++a) {
+      gl.EnableVertexAttribArray(a);
+      gl.VertexAttribDivisor(a, 1);
+    }
+    gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, m.ibo);
+    gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(data.indices.size() * sizeof(uint32_t)),
+                  data.indices.data(), GL_STATIC_DRAW);
+    gl.BindVertexArray(0);
+    m.indexCount = static_cast<GLsizei>(data.indices.size());
+    m.boundRadius = data.boundRadius;
+  }
+
+  bool init(std::string* error) {
+    if (opt.width <= 0 || opt.height <= 0 || opt.width > 16384 || opt.height > 16384) {
+      if (error) *error = "renderer: invalid image size " + std::to_string(opt.width) + "x" + std::to_string(opt.height);
+      return false;
+    }
+    ctx = createOsMesaContext(error);
+    if (!ctx || !gl.load(*ctx, error)) return false;
+    if (!sceneProgram.load(gl, opt.shaderDir, "scene.vert", "scene.frag", error) ||
+        !shadowProgram.load(gl, opt.shaderDir, "shadow.vert", "shadow.frag", error) ||
+        !skyProgram.load(gl, opt.shaderDir, "sky.vert", "sky.frag", error))
+      return false;
+
+    upload(makeBoxMesh(), box);
+    upload(makeSphereMesh(24, 14), sphere);
+    upload(makeCapsuleMesh(24, 7), capsule);
+    upload(makePlaneMesh(), plane);
+    gl.GenBuffers(1, &instanceVbo);
+    gl.GenVertexArrays(1, &emptyVao);
+
+    GLint maxSamples = 1;
+    gl.GetIntegerv(GL_MAX_SAMPLES, &maxSamples);
+    samples = std::clamp(opt.msaaSamples, 1, std::max(1, static_cast<int>(maxSamples)));
+
+    gl.GenFramebuffers(1, &msaaFbo);
+    gl.GenRenderbuffers(1, &msaaColor);
+    gl.GenRenderbuffers(1, &msaaDepth);
+    gl.BindFramebuffer(GL_FRAMEBUFFER, msaaFbo);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, msaaColor);
+    gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, GL_RGBA8, opt.width, opt.height);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaaColor);
+    gl.BindRenderbuffer(GL_RENDERBUFFER, msaaDepth);
+    gl.RenderbufferStorageMultisample(GL_RENDERBUFFER, samples > 1 ? samples : 0, GL_DEPTH_COMPONENT24,
+                                      opt.width, opt.height);
+    gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaaDepth);
+    if (!checkFramebuffer("scene", error)) return false;
+
+    if (samples > 1) {
+      gl.GenFramebuffers(1, &resolveFbo);
+      gl.GenRenderbuffers(1, &resolveColor);
+      gl.BindFramebuffer(GL_FRAMEBUFFER, resolveFbo);
+      gl.BindRenderbuffer(GL_RENDERBUFFER, resolveColor);
+      gl.RenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, opt.width, opt.height);
+      gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolveColor);
+      if (!checkFramebuffer("resolve", error)) return false;
+    }
+
+    if (opt.shadowMapSize > 0) {
+      opt.shadowMapSize = std::min(opt.shadowMapSize, 8192);
+      gl.GenTextures(1, &shadowTex);
+      gl.BindTexture(GL_TEXTURE_2D, shadowTex);
+      gl.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, opt.shadowMapSize, opt.shadowMapSize, 0,
+                    GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, nullptr);
+      // Linear filtering + compare mode: each tap is already a 2x2 bilinear PCF.
+      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+      const float border[4] = {1.f, 1.f, 1.f, 1.f};
+      gl.TexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, border);
+      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+      gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+      gl.GenFramebuffers(1, &shadowFbo);
+      gl.BindFramebuffer(GL_FRAMEBUFFER, shadowFbo);
+      gl.FramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowTex, 0);
+      gl.DrawBuffer(GL_NONE);
+      gl.ReadBuffer(GL_NONE);
+      if (!checkFramebuffer("shadow", error)) return false;
+    }
+    gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
+    readback.resize(static_cast<size_t>(opt.width) * opt.height * 4);
+    return checkGl("initialisation", error);
+  }
+
+  bool checkFramebuffer(const char* what, std::string* error) {
+    const GLenum status = gl.CheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status == GL_FRAMEBUFFER_COMPLETE) return true;
+    if (error) *error = std::string("renderer: ") + what + " framebuffer incomplete (status 0x" + hex(status) + ")";
+    return false;
+  }
+
+  bool checkGl(const char* what, std::string* error) {
+    const GLenum e = gl.GetError();
+    if (e == GL_NO_ERROR) return true;
+    if (error) *error = std::string("renderer: GL error 0x") + hex(e) + " during " + what;
+    return false;
+  }
+
+  static std::string hex(unsigned v) {
+    char buf[16];
+    std::snprintf(buf, sizeof buf, "%x", v);
+    return buf;
+  }
+
+  bool isGround(const Instance& in) const {
+    if (in.kind == ShapeKind::Plane) return true;
+    return in.kind == ShapeKind::Box && in.isStatic &&
+           std::max(in.halfExtents[0], in.halfExtents[2]) >= opt.groundMinHalfExtent;
+  }
+
+  static bool finite3(const float* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
+
+  void pushInstance(Vec3 p, const float* q, Vec3 scale, float stretch, LinearColor c, float emissive) {
+    float qn[4] = {q[0], q[1], q[2], q[3]};
+    const float len = std::sqrt(qn[0] * qn[0] + qn[1] * qn[1] + qn[2] * qn[2] + qn[3] * qn[3]);
+    if (!(len > 1e-12f) || !std::isfinite(len))
+      qn[0] = qn[1] = qn[2] = 0.f, qn[3] = 1.f;
+    else
+      for (float& v : qn) v /= len;
+    staging.insert(staging.end(), {p.x, p.y, p.z, qn[0], qn[1], qn[2], qn[3], scale.x, scale.y, scale.z,
+                                   stretch, c.r, c.g, c.b, emissive});
+  }
+
+  size_t instanceCount() const { return staging.size() / kInstanceFloats; }
+
+  void addGroup(const GpuMesh* mesh, size_t first, int surface, bool cull, bool casts) {
+    const size_t count = instanceCount() - first;
+    if (count) groups.push_back({mesh, first, count, surface, cull, casts});
+  }
+
+  // Bounds of everything but the ground (for framing and the shadow frustum) and the draw kind of
+  // each instance. Returns false for unregistered meshes.
+  bool classify(const FrameInput& f, SceneBounds* bounds, float* meanRadius, std::string* error) {
+    order.clear();
+    framing.clear();
+    float radiusSum = 0.f;
+    int radiusCount = 0;
+    for (uint32_t i = 0; i < f.instances.size(); ++i) {
+      const Instance& in = f.instances[i];
+      if (!finite3(in.position)) continue;  // a NaN body must not poison framing or the GPU
+      uint32_t kind = kBox;
+      float r = 0.f;
+      switch (in.kind) {
+        case ShapeKind::Box:
+          kind = isGround(in) ? kGroundBox : kBox;
+          r = std::sqrt(in.halfExtents[0] * in.halfExtents[0] + in.halfExtents[1] * in.halfExtents[1] +
+                        in.halfExtents[2] * in.halfExtents[2]);
+          break;
+        case ShapeKind::Sphere: kind = kSphere, r = in.radius; break;
+        case ShapeKind::Capsule: kind = kCapsule, r = in.radius + in.halfHeight; break;
+        case ShapeKind::ConvexHull:
+        case ShapeKind::TriangleMesh: {
+          auto it = meshes.find(in.meshId);
+          if (it == meshes.end()) {
+            if (error) *error = "renderer: instance " + std::to_string(i) + " (body " + std::to_string(in.bodyId) +
+                                ") uses mesh id " + std::to_string(in.meshId) + " that was never registered";
+            return false;
+          }
+          kind = in.kind == ShapeKind::ConvexHull ? kHull : kTriMesh;
+          r = it->second.boundRadius;
+          break;
+        }
+        case ShapeKind::Plane: kind = kGroundPlane; break;
+      }
+      if (kind != kGroundBox && kind != kGroundPlane && std::isfinite(r)) {
+        bounds->add({in.position[0], in.position[1], in.position[2]}, r);
+        framing.push_back({{in.position[0], in.position[1], in.position[2]}, r});
+        radiusSum += r, ++radiusCount;
+      }
+      order.push_back({kind, (kind == kHull || kind == kTriMesh) ? in.meshId : 0u, 0.f, i});
+    }
+    *meanRadius = radiusCount ? radiusSum / radiusCount : 0.5f;
+    return true;
+  }
+
+  // Sorts instances into draw groups (front to back inside each) and fills the staging buffer.
+  void buildInstances(const FrameInput& f, Vec3 eye) {
+    staging.clear();
+    groups.clear();
+    for (SortItem& it : order) {
+      const float* p = f.instances[it.index].position;
+      const Vec3 d{p[0] - eye.x, p[1] - eye.y, p[2] - eye.z};
+      it.depth = dot(d, d);
+    }
+    std::sort(order.begin(), order.end(), [](const SortItem& a, const SortItem& b) {
+      return a.kind != b.kind ? a.kind < b.kind : a.meshId != b.meshId ? a.meshId < b.meshId : a.depth < b.depth;
+    });
+
+    size_t groupStart = 0;
+    for (size_t k = 0; k < order.size(); ++k) {
+      const SortItem& s = order[k];
+      const Instance& in = f.instances[s.index];
+      const Vec3 p{in.position[0], in.position[1], in.position[2]};
+      const LinearColor c = instanceColor(in, f.mode);
+      switch (s.kind) {
+        case kGroundBox: case kBox:
+          pushInstance(p, in.orientation, {in.halfExtents[0], in.halfExtents[1], in.halfExtents[2]}, 0.f, c, 0.f);
+          break;
+        case kGroundPlane: pushInstance(p, in.orientation, {kPlaneHalfSize, 1.f, kPlaneHalfSize}, 0.f, c, 0.f); break;
+        case kSphere: pushInstance(p, in.orientation, {in.radius, in.radius, in.radius}, 0.f, c, 0.f); break;
+        case kCapsule: pushInstance(p, in.orientation, {in.radius, in.radius, in.radius}, in.halfHeight, c, 0.f); break;
+        default: pushInstance(p, in.orientation, {1.f, 1.f, 1.f}, 0.f, c, 0.f); break;
+      }
+      const bool last = k + 1 == order.size() || order[k + 1].kind != s.kind || order[k + 1].meshId != s.meshId;
+      if (!last) continue;
+      switch (s.kind) {
+        case kGroundBox: addGroup(&box, groupStart, kSurfaceGround, true, false); break;
+        case kGroundPlane: addGroup(&plane, groupStart, kSurfaceGround, false, false); break;
+        case kBox: addGroup(&box, groupStart, kSurfaceBox, true, true); break;
+        case kSphere: addGroup(&sphere, groupStart, kSurfaceBody, true, true); break;
+        case kCapsule: addGroup(&capsule, groupStart, kSurfaceBody, true, true); break;
+        case kHull: addGroup(&meshes[s.meshId], groupStart, kSurfaceBody, true, true); break;
+        case kTriMesh: addGroup(&meshes[s.meshId], groupStart, kSurfaceBody, false, true); break;
+        default: break;
+      }
+      groupStart = instanceCount();
+    }
+  }
+
+  void buildContactMarkers(const FrameInput& f, float meanRadius) {
+    if (!f.showContacts || f.contacts.empty()) return;
+    const float s = f.contactScale > 0.f ? f.contactScale : std::max(0.01f, 0.12f * meanRadius);
+    const float identity[4] = {0.f, 0.f, 0.f, 1.f};
+    const LinearColor dot{1.f, 0.08f, 0.05f}, arrow{1.f, 0.8f, 0.05f};
+    size_t first = instanceCount();
+    for (const ContactMarker& m : f.contacts)
+      if (finite3(m.point)) pushInstance({m.point[0], m.point[1], m.point[2]}, identity, {s, s, s}, 0.f, dot, 0.7f);
+    addGroup(&sphere, first, kSurfaceBody, true, false);
+    first = instanceCount();
+    for (const ContactMarker& m : f.contacts) {
+      if (!finite3(m.point) || !finite3(m.normal)) continue;
+      const Vec3 n = normalize({m.normal[0], m.normal[1], m.normal[2]});
+      // Shortest rotation taking local +y onto n; the antiparallel case turns about x.
+      float q[4] = {n.z, 0.f, -n.x, 1.f + n.y};
+      if (q[3] < 1e-5f) q[0] = 1.f, q[1] = q[2] = q[3] = 0.f;
+      const float len = 4.f * s;
+      const Vec3 c = Vec3{m.point[0], m.point[1], m.point[2]} + n * (len * 0.5f + s);
+      pushInstance(c, q, {s * 0.3f, s * 0.3f, s * 0.3f}, len * 0.5f, arrow, 0.6f);
+    }
+    addGroup(&capsule, first, kSurfaceBody, true, false);
+  }
+
+  void uploadInstances() {
+    const size_t bytes = staging.size() * sizeof(float);
+    gl.BindBuffer(GL_ARRAY_BUFFER, instanceVbo);
+    if (bytes > instanceCapacity) {
+      // Grow geometrically so a slowly growing scene does not reallocate every frame.
+      instanceCapacity = std::max(bytes, instanceCapacity * 2);
+      gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(instanceCapacity), nullptr, GL_DYNAMIC_DRAW);
+    }
+    if (bytes) gl.BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), staging.data());
+  }
+
+  void drawGroup(const DrawGroup& g) {
+    gl.BindVertexArray(g.mesh->vao);
+    gl.BindBuffer(GL_ARRAY_BUFFER, instanceVbo);
+    const size_t base = g.first * kInstanceStride;
+    auto at = [&](size_t floats) { return reinterpret_cast<void*>(base + floats * sizeof(float)); };
+    gl.VertexAttribPointer(3, 3, GL_FLOAT, GL_FALSE, kInstanceStride, at(0));
+    gl.VertexAttribPointer(4, 4, GL_FLOAT, GL_FALSE, kInstanceStride, at(3));
+    gl.VertexAttribPointer(5, 3, GL_FLOAT, GL_FALSE, kInstanceStride, at(7));
+    gl.VertexAttribPointer(6, 1, GL_FLOAT, GL_FALSE, kInstanceStride, at(10));
+    gl.VertexAttribPointer(7, 4, GL_FLOAT, GL_FALSE, kInstanceStride, at(11));
+    if (g.cull)
+      gl.Enable(GL_CULL_FACE);
+    else
+      gl.Disable(GL_CULL_FACE);
+    gl.DrawElementsInstanced(GL_TRIANGLES, g.mesh->indexCount, GL_UNSIGNED_INT, nullptr,
+                             static_cast<GLsizei>(g.count));
+  }
+
+  // Orthographic sun view around the casters, snapped to whole texels so shadows do not shimmer
+  // when the framing moves a little between frames.
+  Mat4 lightMatrix(const SceneBounds& casters, float* texelWorld) const {
+    const Vec3 c = casters.center();
+    float r = std::max(casters.radius(), 0.5f);
+    r = std::pow(2.f, std::ceil(std::log2(r) * 4.f) / 4.f);  // quantised: texel size changes in steps
+    const Vec3 f = kSunDir * -1.f;
+    const Vec3 s = normalize(cross(f, {0.f, 1.f, 0.f}));
+    const Vec3 u = cross(s, f);
+    const float texel = 2.f * r / static_cast<float>(opt.shadowMapSize);
+    const float sx = std::round(dot(c, s) / texel) * texel, sy = std::round(dot(c, u) / texel) * texel;
+    const Vec3 center = s * sx + u * sy + f * dot(c, f);
+    *texelWorld = texel;
+    return ortho(-r, r, -r, r, r, 9.f * r) * lookAt(center - f * (3.f * r), center, u);
+  }
+
+  bool render(const FrameInput& f, std::vector<uint8_t>& out, std::string* error) {
+    if (!ctx->makeCurrent(error)) return false;
+    SceneBounds bounds;
+    float meanRadius = 0.5f;
+    if (!classify(f, &bounds, &meanRadius, error)) return false;
+    const ViewSetup view = computeView(f.camera, bounds, opt.width, opt.height, &framing);
+    buildInstances(f, view.eye);
+    const size_t groupsBeforeMarkers = groups.size();
+    buildContactMarkers(f, meanRadius);
+    uploadInstances();
+
+    const Vec3 focus = bounds.valid ? bounds.center() : Vec3{0.f, 0.f, 0.f};
+    const float sceneR = bounds.valid ? std::max(bounds.radius(), 1.f) : 5.f;
+    const float eyeDist = length(view.eye - focus);
+
+    // ---- shadow pass ----
+    float texelWorld = 0.f;
+    Mat4 lightVP;
+    bool shadows = false;
+    for (size_t i = 0; i < groupsBeforeMarkers; ++i) shadows |= groups[i].castsShadow;
+    shadows = shadows && opt.shadowMapSize > 0;
+    gl.Enable(GL_DEPTH_TEST);
+    gl.DepthMask(GL_TRUE);
+    gl.DepthFunc(GL_LESS);
+    gl.CullFace(GL_BACK);
+    if (shadows) {
+      lightVP = lightMatrix(bounds, &texelWorld);
+      gl.BindFramebuffer(GL_FRAMEBUFFER, shadowFbo);
+      gl.Viewport(0, 0, opt.shadowMapSize, opt.shadowMapSize);
+      gl.Clear(GL_DEPTH_BUFFER_BIT);
+      gl.Enable(GL_POLYGON_OFFSET_FILL);
+      gl.PolygonOffset(1.5f, 3.f);
+      shadowProgram.use();
+      gl.UniformMatrix4fv(shadowProgram.uniform("uLightViewProj"), 1, GL_FALSE, lightVP.m);
+      for (size_t i = 0; i < groupsBeforeMarkers; ++i)
+        if (groups[i].castsShadow) drawGroup(groups[i]);
+      gl.Disable(GL_POLYGON_OFFSET_FILL);
+    }
+
+    // ---- main pass ----
+    const LinearColor horizon{srgbToLinear(0.80f), srgbToLinear(0.85f), srgbToLinear(0.90f)};
+    const LinearColor zenith{srgbToLinear(0.38f), srgbToLinear(0.56f), srgbToLinear(0.80f)};
+    gl.BindFramebuffer(GL_FRAMEBUFFER, msaaFbo);
+    gl.Viewport(0, 0, opt.width, opt.height);
+    // No colour clear: the sky pass below fills every pixel that geometry left empty, and an
+    // MSAA clear is expensive on llvmpipe.
+    gl.Clear(GL_DEPTH_BUFFER_BIT);
+    sceneProgram.use();
+    const ShaderProgram& sp = sceneProgram;
+    gl.UniformMatrix4fv(sp.uniform("uViewProj"), 1, GL_FALSE, view.viewProj.m);
+    gl.UniformMatrix4fv(sp.uniform("uLightViewProj"), 1, GL_FALSE, lightVP.m);
+    gl.Uniform1f(sp.uniform("uShadowNormalOffset"), 1.5f * texelWorld);
+    gl.Uniform1i(sp.uniform("uShadowMap"), 0);
+    gl.Uniform1f(sp.uniform("uShadowTexel"), opt.shadowMapSize > 0 ? 1.f / opt.shadowMapSize : 0.f);
+    gl.Uniform1i(sp.uniform("uShadowsOn"), shadows ? 1 : 0);
+    gl.Uniform3f(sp.uniform("uSunDir"), kSunDir.x, kSunDir.y, kSunDir.z);
+    gl.Uniform3f(sp.uniform("uSunColor"), 1.25f, 1.18f, 1.05f);
+    gl.Uniform3f(sp.uniform("uSkyAmbient"), 0.30f, 0.36f, 0.46f);
+    gl.Uniform3f(sp.uniform("uGroundAmbient"), 0.16f, 0.14f, 0.12f);
+    gl.Uniform3f(sp.uniform("uEye"), view.eye.x, view.eye.y, view.eye.z);
+    gl.Uniform3f(sp.uniform("uFogColor"), horizon.r, horizon.g, horizon.b);
+    gl.Uniform1f(sp.uniform("uFogDistance"), (eyeDist + 2.f * sceneR) * 2.5f);
+    gl.Uniform3f(sp.uniform("uGroundColor"), srgbToLinear(0.70f), srgbToLinear(0.70f), srgbToLinear(0.68f));
+    gl.Uniform1f(sp.uniform("uGridSpacing"), 1.f);
+    gl.Uniform1f(sp.uniform("uGridFade"), eyeDist + 3.f * sceneR);
+    gl.ActiveTexture(GL_TEXTURE0);
+    gl.BindTexture(GL_TEXTURE_2D, shadowTex);
+    const GLint surfaceLoc = sp.uniform("uSurface");
+    for (const DrawGroup& g : groups) {
+      gl.Uniform1i(surfaceLoc, g.surface);
+      drawGroup(g);
+    }
+
+    // ---- sky where nothing was drawn ----
+    gl.Disable(GL_CULL_FACE);
+    gl.DepthFunc(GL_LEQUAL);
+    gl.DepthMask(GL_FALSE);
+    skyProgram.use();
+    gl.Uniform3f(skyProgram.uniform("uForward"), view.forward.x, view.forward.y, view.forward.z);
+    gl.Uniform3f(skyProgram.uniform("uRight"), view.right.x, view.right.y, view.right.z);
+    gl.Uniform3f(skyProgram.uniform("uUp"), view.up.x, view.up.y, view.up.z);
+    gl.Uniform2f(skyProgram.uniform("uTanHalfFov"), view.tanHalfFovY * view.aspect, view.tanHalfFovY);
+    gl.Uniform3f(skyProgram.uniform("uHorizon"), horizon.r, horizon.g, horizon.b);
+    gl.Uniform3f(skyProgram.uniform("uZenith"), zenith.r, zenith.g, zenith.b);
+    gl.BindVertexArray(emptyVao);
+    gl.DrawArrays(GL_TRIANGLE_STRIP, 0, 2 * (kSkyRows + 1));
+    gl.DepthMask(GL_TRUE);
+    gl.DepthFunc(GL_LESS);
+    gl.BindVertexArray(0);
+
+    // ---- resolve + read back ----
+    GLuint readFbo = msaaFbo;
+    if (samples > 1) {
+      gl.BindFramebuffer(GL_READ_FRAMEBUFFER, msaaFbo);
+      gl.BindFramebuffer(GL_DRAW_FRAMEBUFFER, resolveFbo);
+      gl.BlitFramebuffer(0, 0, opt.width, opt.height, 0, 0, opt.width, opt.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
+      readFbo = resolveFbo;
+    }
+    gl.BindFramebuffer(GL_READ_FRAMEBUFFER, readFbo);
+    gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl.ReadPixels(0, 0, opt.width, opt.height, GL_RGBA, GL_UNSIGNED_BYTE, readback.data());
+    if (!checkGl("rendering", error)) return false;
+
+    // GL row 0 is the bottom of the image; callers get the top row first.
+    const size_t rowBytes = static_cast<size_t>(opt.width) * 4;
+    out.resize(rowBytes * opt.height);
+    for (int y = 0; y < opt.height; ++y)
+      std::memcpy(out.data() + rowBytes * y, readback.data() + rowBytes * (opt.height - 1 - y), rowBytes);
+
+    if (f.overlay.enabled) {
+      if (!text) {
+        text = TextRenderer::create(opt.fontPath, error);
+        if (!text) return false;
+      }
+      Canvas canvas(out.data(), opt.width, opt.height);
+      drawOverlay(canvas, *text, f.overlay, f.mode);
+    }
+    return true;
+  }
+};
+
+Renderer::Renderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+Renderer::~Renderer() = default;
+
+std::unique_ptr<Renderer> Renderer::create(const RendererOptions& options, std::string* error) {
+  auto impl = std::make_unique<Impl>();
+  impl->opt = options;
+  if (!impl->init(error)) return nullptr;
+  return std::unique_ptr<Renderer>(new Renderer(std::move(impl)));
+}
+
+bool Renderer::registerMesh(uint32_t meshId, const std::vector<float>& positions,
+                            const std::vector<uint32_t>& indices, std::string* error) {
+  const MeshData data = makeFlatMesh(positions, indices);
+  if (data.indices.empty()) {
+    if (error) *error = "renderer: mesh " + std::to_string(meshId) + " has no valid triangle";
+    return false;
+  }
+  if (!impl_->ctx->makeCurrent(error)) return false;
+  impl_->upload(data, impl_->meshes[meshId]);
+  return impl_->checkGl("mesh upload", error);
+}
+
+bool Renderer::hasMesh(uint32_t meshId) const { return impl_->meshes.count(meshId) != 0; }
+
+bool Renderer::render(const FrameInput& frame, std::vector<uint8_t>& rgba, std::string* error) {
+  return impl_->render(frame, rgba, error);
+}
+
+bool Renderer::renderToPng(const FrameInput& frame, const std::string& path, std::string* error) {
+  std::vector<uint8_t> rgba;
+  return render(frame, rgba, error) && writePng(path, impl_->opt.width, impl_->opt.height, rgba.data(), error);
+}
+
+int Renderer::width() const { return impl_->opt.width; }
+int Renderer::height() const { return impl_->opt.height; }
+int Renderer::msaaSamples() const { return impl_->samples; }
+
+}  // namespace haif::render

@@ -1,0 +1,125 @@
+// Software charts: data lands on the right pixel rows, legends and text are drawn, the run
+// charts are written as PNGs of the requested size.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "render/chart.h"
+#include "render/png_io.h"
+#include "render/run_charts.h"
+#include "render_test_util.h"
+
+namespace haif::render {
+namespace {
+
+std::unique_ptr<TextRenderer> font() {
+  std::string error;
+  auto t = TextRenderer::create(HAIF_FONT_PATH, &error);
+  EXPECT_NE(t, nullptr) << error;
+  return t;
+}
+
+TEST(Chart, ConstantSeriesSitsOnItsValueRow) {
+  auto text = font();
+  ASSERT_TRUE(text);
+  const int w = 400, h = 300;
+  std::vector<uint8_t> px(static_cast<size_t>(w) * h * 4);
+  Canvas canvas(px.data(), w, h);
+  ChartSpec spec;
+  spec.yMin = 0.f, spec.yMax = 10.f;
+  spec.series.push_back({"", std::vector<float>(50, 5.f), Rgba{0, 0, 255, 255}, ChartSeries::Style::Line, 2.f});
+  const ChartGeometry g = drawChart(canvas, *text, 0, 0, w, h, spec, ChartStyle{});
+  ASSERT_GT(g.bottom - g.top, 100.f);
+  const float expected = g.yToPixel(5.0);
+  EXPECT_NEAR(expected, (g.top + g.bottom) * 0.5f, 1.0f);
+  const int x = static_cast<int>((g.left + g.right) * 0.5f);
+  int bestRow = -1, bestBlue = 0;
+  for (int y = 0; y < h; ++y) {
+    const auto p = test::at(px, w, x, y);
+    const int blueness = p.b - (p.r + p.g) / 2;
+    if (blueness > bestBlue) bestBlue = blueness, bestRow = y;
+  }
+  EXPECT_GT(bestBlue, 150);
+  EXPECT_NEAR(bestRow + 0.5f, expected, 1.0f);
+}
+
+TEST(Chart, LegendTextIsDrawnInsideThePlot) {
+  auto text = font();
+  ASSERT_TRUE(text);
+  const int w = 400, h = 300;
+  ChartSpec spec;
+  spec.series.push_back({"", {1.f, 2.f, 3.f}, Rgba{0, 0, 255, 255}, ChartSeries::Style::Line, 2.f});
+  std::vector<uint8_t> plain(static_cast<size_t>(w) * h * 4), legend(plain.size());
+  Canvas c1(plain.data(), w, h), c2(legend.data(), w, h);
+  drawChart(c1, *text, 0, 0, w, h, spec, ChartStyle{});
+  spec.series[0].name = "iterations";
+  const ChartGeometry g = drawChart(c2, *text, 0, 0, w, h, spec, ChartStyle{});
+  // Dark text pixels that only the named version has, in the top-right part of the plot.
+  int textPixels = 0, elsewhere = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const auto a = test::at(plain, w, x, y), b = test::at(legend, w, x, y);
+      if (a.r == b.r && a.g == b.g && a.b == b.b) continue;
+      const bool topRight = x > (g.left + g.right) / 2 && y < (g.top + g.bottom) / 2;
+      if (!topRight) ++elsewhere;
+      if (topRight && b.r < 100 && b.g < 100 && b.b < 100) ++textPixels;
+    }
+  EXPECT_GT(textPixels, 20) << "legend text missing";
+  EXPECT_EQ(elsewhere, 0);
+}
+
+TEST(Chart, TextRendererDrawsGlyphsAndMeasures) {
+  auto text = font();
+  ASSERT_TRUE(text);
+  std::vector<uint8_t> px(100 * 30 * 4, 255);
+  Canvas c(px.data(), 100, 30);
+  const float adv = text->draw(c, 2.f, 20.f, "HAIF", 16, Rgba{0, 0, 0, 255});
+  EXPECT_NEAR(adv, text->measure("HAIF", 16), 0.01f);
+  EXPECT_GT(adv, 20.f);
+  int dark = 0;
+  for (size_t i = 0; i < px.size(); i += 4) dark += px[i] < 80;
+  EXPECT_GT(dark, 40);
+  std::string error;
+  EXPECT_EQ(TextRenderer::create("/nonexistent/font.ttf", &error), nullptr);
+  EXPECT_NE(error.find("/nonexistent/font.ttf"), std::string::npos);
+}
+
+TEST(RunCharts, WritesThreeChartsWithBudgetLine) {
+  RunSeries run;
+  run.scene = "unit";
+  run.iMin = 4, run.iMax = 20, run.budgetMs = 10.f;
+  for (int i = 0; i < 500; ++i) {
+    run.iterations.push_back(static_cast<float>(8 + i % 5));
+    run.collisionMs.push_back(2.f);
+    run.solveMs.push_back(4.f);
+    run.error.push_back(0.5f * std::pow(0.98f, static_cast<float>(i)));  // spans decades: log axis
+  }
+  RunChartOptions options;
+  options.width = 600, options.height = 300;
+  const std::string dir = test::tempDir() + "/charts";
+  std::filesystem::create_directories(dir);
+  std::string error;
+  ASSERT_TRUE(writeRunCharts(dir, run, options, &error)) << error;
+  for (const char* name : {"iterations.png", "step_time.png", "error.png"}) {
+    int w = 0, h = 0;
+    std::vector<uint8_t> px;
+    ASSERT_TRUE(readPng(dir + "/" + name, &w, &h, &px, &error)) << error;
+    EXPECT_EQ(w, 600);
+    EXPECT_EQ(h, 300);
+  }
+  // The budget line (red) runs across the step-time plot.
+  int w = 0, h = 0;
+  std::vector<uint8_t> px;
+  ASSERT_TRUE(readPng(dir + "/step_time.png", &w, &h, &px, &error));
+  int bestRowCount = 0;
+  for (int y = 0; y < h; ++y) {
+    int count = 0;
+    for (int x = 0; x < w; ++x) count += test::isRed(test::at(px, w, x, y));
+    bestRowCount = std::max(bestRowCount, count);
+  }
+  EXPECT_GT(bestRowCount, w / 2);
+  EXPECT_FALSE(writeRunCharts("/nonexistent_dir_haif", run, options, &error));
+}
+
+}  // namespace
+}  // namespace haif::render

@@ -1,0 +1,54 @@
+// PNG writing/reading: exact round trip, atomic write, clear errors.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "render/png_io.h"
+#include "render_test_util.h"
+
+namespace haif::render {
+namespace {
+
+TEST(PngIo, RoundTripKeepsEveryPixelAndTopRowFirst) {
+  const int w = 37, h = 21;  // odd sizes catch stride mistakes
+  std::vector<uint8_t> rgba(static_cast<size_t>(w) * h * 4);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      uint8_t* p = &rgba[4 * (static_cast<size_t>(y) * w + x)];
+      p[0] = static_cast<uint8_t>(x * 7), p[1] = static_cast<uint8_t>(y * 11), p[2] = static_cast<uint8_t>(x ^ y),
+      p[3] = static_cast<uint8_t>(255 - y);
+    }
+  const std::string path = test::tempDir() + "/roundtrip.png";
+  std::string error;
+  ASSERT_TRUE(writePng(path, w, h, rgba.data(), &error)) << error;
+  int rw = 0, rh = 0;
+  std::vector<uint8_t> back;
+  ASSERT_TRUE(readPng(path, &rw, &rh, &back, &error)) << error;
+  EXPECT_EQ(rw, w);
+  EXPECT_EQ(rh, h);
+  EXPECT_EQ(back, rgba);
+  // Nothing but the final file is left behind.
+  int files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(test::tempDir()))
+    files += e.path().filename().string().rfind("roundtrip.png", 0) == 0;
+  EXPECT_EQ(files, 1);
+}
+
+TEST(PngIo, UnwritableDirectoryFailsWithPathInError) {
+  std::vector<uint8_t> rgba(4 * 4 * 4, 128);
+  std::string error;
+  EXPECT_FALSE(writePng("/nonexistent_dir_haif/x.png", 4, 4, rgba.data(), &error));
+  EXPECT_NE(error.find("/nonexistent_dir_haif/x.png"), std::string::npos) << error;
+  EXPECT_FALSE(std::filesystem::exists("/nonexistent_dir_haif"));
+}
+
+TEST(PngIo, ReadingAMissingFileFails) {
+  int w = 0, h = 0;
+  std::vector<uint8_t> px;
+  std::string error;
+  EXPECT_FALSE(readPng(test::tempDir() + "/does_not_exist.png", &w, &h, &px, &error));
+  EXPECT_NE(error.find("does_not_exist.png"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace haif::render

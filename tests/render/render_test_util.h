@@ -1,0 +1,50 @@
+// Helpers shared by the renderer tests: small scenes and pixel probes.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/frame_input.h"
+
+namespace haif::render::test {
+
+/// The reference ground: static box half extents (500, 1, 500) centred at y = -1.
+inline Instance groundBox() {
+  Instance g;
+  g.kind = ShapeKind::Box;
+  g.isStatic = true;
+  g.halfExtents[0] = 500.f, g.halfExtents[1] = 1.f, g.halfExtents[2] = 500.f;
+  g.position[1] = -1.f;
+  return g;
+}
+
+/// A body with a fixed sRGB colour (Normal mode).
+inline Instance coloredBody(ShapeKind kind, float x, float y, float z, float r, float g, float b) {
+  Instance in;
+  in.kind = kind;
+  in.position[0] = x, in.position[1] = y, in.position[2] = z;
+  in.useColor = true;
+  in.color[0] = r, in.color[1] = g, in.color[2] = b;
+  in.bodyId = 1;
+  return in;
+}
+
+struct Pixel {
+  int r, g, b, a;
+};
+
+inline Pixel at(const std::vector<uint8_t>& rgba, int w, int x, int y) {
+  const uint8_t* p = rgba.data() + 4 * (static_cast<size_t>(y) * w + x);
+  return {p[0], p[1], p[2], p[3]};
+}
+
+/// Strongly red: red clearly dominates green and blue.
+inline bool isRed(Pixel p) { return p.r > 90 && p.r > p.g + 50 && p.r > p.b + 50; }
+/// Strongly green.
+inline bool isGreen(Pixel p) { return p.g > 90 && p.g > p.r + 50 && p.g > p.b + 50; }
+
+/// Directory for test output files (created if needed).
+std::string tempDir();
+
+}  // namespace haif::render::test

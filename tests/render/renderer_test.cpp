@@ -1,0 +1,295 @@
+// Tolerance-based image checks of the GL renderer: colours land where the geometry is, the image
+// is right side up, errors are clear, and the overlay only touches its panel.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <cstring>
+#include <fstream>
+
+#include "render/overlay.h"
+#include "render/png_io.h"
+#include "render/renderer.h"
+#include "render_test_util.h"
+
+namespace haif::render {
+namespace {
+
+using test::at;
+using test::coloredBody;
+using test::groundBox;
+
+std::unique_ptr<Renderer> makeRenderer(int w, int h) {
+  RendererOptions o;
+  o.width = w;
+  o.height = h;
+  o.shadowMapSize = 1024;
+  std::string error;
+  auto r = Renderer::create(o, &error);
+  EXPECT_NE(r, nullptr) << error;
+  return r;
+}
+
+// A camera looking horizontally at the origin region from +z.
+Camera frontCamera() {
+  Camera c;
+  c.automatic = false;
+  c.eye[0] = 0.f, c.eye[1] = 1.5f, c.eye[2] = 8.f;
+  c.target[0] = 0.f, c.target[1] = 1.5f, c.target[2] = 0.f;
+  c.fovYDegrees = 45.f;
+  return c;
+}
+
+TEST(Renderer, RedBoxAboveGroundAppearsWhereExpected) {
+  auto r = makeRenderer(160, 120);
+  ASSERT_TRUE(r);
+  FrameInput f;
+  f.camera = frontCamera();
+  f.instances.push_back(groundBox());
+  f.instances.push_back(coloredBody(ShapeKind::Box, 0.f, 1.5f, 0.f, 0.9f, 0.1f, 0.1f));
+  std::vector<uint8_t> px;
+  std::string error;
+  ASSERT_TRUE(r->render(f, px, &error)) << error;
+  ASSERT_EQ(px.size(), 160u * 120u * 4u);
+  // The box is centred on the view axis: the image centre is red.
+  int red = 0;
+  for (int y = 52; y < 68; ++y)
+    for (int x = 72; x < 88; ++x) red += test::isRed(at(px, 160, x, y));
+  EXPECT_GT(red, 200) << "box colour missing at the image centre";
+  // Top rows are sky (bright, blue dominant), bottom rows are the grey ground.
+  for (int x : {5, 80, 150}) {
+    const auto sky = at(px, 160, x, 2);
+    EXPECT_GT(sky.b, sky.r) << "sky at x=" << x;
+    EXPECT_GT(sky.b, 150);
+    const auto ground = at(px, 160, x, 117);
+    EXPECT_FALSE(test::isRed(ground));
+    EXPECT_LT(std::abs(ground.r - ground.b), 40) << "ground should be grey at x=" << x;
+    EXPECT_GT(ground.r, 60);
+  }
+  // No red away from the box.
+  EXPECT_FALSE(test::isRed(at(px, 160, 10, 60)));
+  EXPECT_FALSE(test::isRed(at(px, 160, 150, 60)));
+}
+
+TEST(Renderer, HighObjectLandsInUpperRowsOfPng) {
+  auto r = makeRenderer(160, 120);
+  ASSERT_TRUE(r);
+  FrameInput f;
+  f.camera = frontCamera();
+  f.instances.push_back(groundBox());
+  Instance s = coloredBody(ShapeKind::Sphere, 0.f, 3.2f, 0.f, 0.1f, 0.8f, 0.1f);
+  s.radius = 0.6f;
+  f.instances.push_back(s);
+  const std::string path = test::tempDir() + "/yflip.png";
+  std::string error;
+  ASSERT_TRUE(r->renderToPng(f, path, &error)) << error;
+  int w = 0, h = 0;
+  std::vector<uint8_t> px;
+  ASSERT_TRUE(readPng(path, &w, &h, &px, &error)) << error;
+  ASSERT_EQ(w, 160);
+  ASSERT_EQ(h, 120);
+  long sumRow = 0, count = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (test::isGreen(at(px, w, x, y))) sumRow += y, ++count;
+  ASSERT_GT(count, 50);
+  EXPECT_LT(sumRow / count, h / 3) << "the high sphere must be near the top of the PNG";
+  // The ground (below the horizon) fills the bottom rows.
+  EXPECT_LT(std::abs(at(px, w, 80, h - 2).r - at(px, w, 80, h - 2).b), 40);
+}
+
+TEST(Renderer, AutomaticCameraFramesEveryBodyAndIgnoresGround) {
+  auto r = makeRenderer(200, 150);
+  ASSERT_TRUE(r);
+  FrameInput f;  // camera.automatic defaults to true
+  f.instances.push_back(groundBox());
+  f.instances.push_back(coloredBody(ShapeKind::Box, -20.f, 0.5f, 0.f, 0.9f, 0.1f, 0.1f));
+  f.instances.push_back(coloredBody(ShapeKind::Box, 20.f, 0.5f, 0.f, 0.1f, 0.8f, 0.1f));
+  std::vector<uint8_t> px;
+  std::string error;
+  ASSERT_TRUE(r->render(f, px, &error)) << error;
+  int red = 0, green = 0;
+  for (int y = 0; y < 150; ++y)
+    for (int x = 0; x < 200; ++x) red += test::isRed(at(px, 200, x, y)), green += test::isGreen(at(px, 200, x, y));
+  EXPECT_GT(red, 4) << "left box out of view";
+  EXPECT_GT(green, 4) << "right box out of view";
+}
+
+TEST(Renderer, ViewModesRecolourBodies) {
+  auto r = makeRenderer(160, 120);
+  ASSERT_TRUE(r);
+  FrameInput f;
+  f.camera = frontCamera();
+  Instance b = coloredBody(ShapeKind::Box, 0.f, 1.5f, 0.f, 0.9f, 0.1f, 0.1f);
+  b.sleeping = true;
+  b.heat = 1.f;
+  f.instances.push_back(b);
+  std::vector<uint8_t> normal, sleep, heat;
+  std::string error;
+  ASSERT_TRUE(r->render(f, normal, &error)) << error;
+  f.mode = ViewMode::Sleep;
+  ASSERT_TRUE(r->render(f, sleep, &error)) << error;
+  f.mode = ViewMode::Heat;
+  ASSERT_TRUE(r->render(f, heat, &error)) << error;
+  const auto n = at(normal, 160, 80, 60), s = at(sleep, 160, 80, 60), h = at(heat, 160, 80, 60);
+  EXPECT_TRUE(test::isRed(n));
+  EXPECT_GT(s.b, s.r) << "sleeping bodies are blue-grey";
+  EXPECT_GT(h.g, h.b) << "heat 1 is yellow";
+  EXPECT_GT(h.r, h.b);
+}
+
+TEST(Renderer, ContactMarkersAreDrawn) {
+  auto r = makeRenderer(160, 120);
+  ASSERT_TRUE(r);
+  FrameInput f;
+  f.camera = frontCamera();
+  f.instances.push_back(groundBox());
+  ContactMarker m;
+  m.point[1] = 1.5f;
+  f.contacts.push_back(m);
+  f.contactScale = 0.2f;
+  std::vector<uint8_t> without, with;
+  std::string error;
+  ASSERT_TRUE(r->render(f, without, &error)) << error;
+  f.showContacts = true;
+  ASSERT_TRUE(r->render(f, with, &error)) << error;
+  EXPECT_FALSE(test::isRed(at(without, 160, 80, 60)));
+  EXPECT_TRUE(test::isRed(at(with, 160, 80, 60))) << "contact dot at the image centre";
+}
+
+TEST(Renderer, OverlayTogglesOnlyThePanelRegion) {
+  const int w = 320, h = 240;
+  auto r = makeRenderer(w, h);
+  ASSERT_TRUE(r);
+  FrameInput f;
+  f.instances.push_back(groundBox());
+  for (int i = 0; i < 10; ++i) {
+    Instance b;
+    b.bodyId = static_cast<uint32_t>(i);
+    b.position[0] = static_cast<float>(i % 5) * 1.5f;
+    b.position[1] = 0.5f + static_cast<float>(i / 5);
+    f.instances.push_back(b);
+  }
+  f.overlay.corner = Corner::BottomRight;
+  f.overlay.scene = "test";
+  f.overlay.iMin = 4, f.overlay.iMax = 20, f.overlay.budgetMs = 8.f;
+  for (int i = 0; i < 300; ++i) {
+    f.overlay.iterations.push_back(10.f + static_cast<float>(i % 5));
+    f.overlay.collisionMs.push_back(1.f);
+    f.overlay.solveMs.push_back(3.f);
+  }
+  std::vector<uint8_t> off, on;
+  std::string error;
+  ASSERT_TRUE(r->render(f, off, &error)) << error;
+  f.overlay.enabled = true;
+  ASSERT_TRUE(r->render(f, on, &error)) << error;
+  const PanelRect panel = overlayPanelRect(f.overlay, w, h);
+  ASSERT_GT(panel.x1 - panel.x0, 50);
+  EXPECT_GT(panel.x0, w / 4) << "bottom-right panel starts right of the left quarter";
+  int inside = 0, outside = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = 4 * (static_cast<size_t>(y) * w + x);
+      const bool differs = std::memcmp(&off[i], &on[i], 4) != 0;
+      const bool inPanel = x >= panel.x0 && x < panel.x1 && y >= panel.y0 && y < panel.y1;
+      (inPanel ? inside : outside) += differs;
+    }
+  EXPECT_EQ(outside, 0) << "overlay changed pixels outside its panel";
+  EXPECT_GT(inside, (panel.x1 - panel.x0) * (panel.y1 - panel.y0) / 2) << "panel should be visible";
+}
+
+TEST(Renderer, MissingShaderDirectoryGivesClearError) {
+  RendererOptions o;
+  o.width = 64, o.height = 64;
+  o.shaderDir = "/nonexistent/haif_shaders";
+  std::string error;
+  auto r = Renderer::create(o, &error);
+  EXPECT_EQ(r, nullptr);
+  EXPECT_NE(error.find("/nonexistent/haif_shaders/scene.vert"), std::string::npos) << error;
+}
+
+TEST(Renderer, BrokenShaderReportsFileAndGlslLog) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(test::tempDir()) / "broken_shaders";
+  fs::create_directories(dir);
+  for (const auto& e : fs::directory_iterator(fs::path(HAIF_SHADER_DIR)))
+    fs::copy_file(e.path(), dir / e.path().filename(), fs::copy_options::overwrite_existing);
+  std::ofstream(dir / "scene.frag") << "#version 330 core\nvoid main() { this is not glsl; }\n";
+  RendererOptions o;
+  o.width = 64, o.height = 64;
+  o.shaderDir = dir.string();
+  std::string error;
+  auto r = Renderer::create(o, &error);
+  EXPECT_EQ(r, nullptr);
+  EXPECT_NE(error.find("scene.frag"), std::string::npos) << error;
+  EXPECT_NE(error.find("compile"), std::string::npos) << error;
+  EXPECT_GT(error.size(), (dir / "scene.frag").string().size() + 30) << "GLSL log missing: " << error;
+}
+
+TEST(Renderer, UnregisteredMeshIsAnErrorAndRegisteredMeshDraws) {
+  auto r = makeRenderer(160, 120);
+  ASSERT_TRUE(r);
+  FrameInput f;
+  f.camera = frontCamera();
+  Instance hull = coloredBody(ShapeKind::ConvexHull, 0.f, 1.5f, 0.f, 0.9f, 0.1f, 0.1f);
+  hull.meshId = 42;
+  f.instances.push_back(hull);
+  std::vector<uint8_t> px;
+  std::string error;
+  EXPECT_FALSE(r->render(f, px, &error));
+  EXPECT_NE(error.find("42"), std::string::npos) << error;
+  // A tetrahedron around the origin, counter-clockwise from outside.
+  const std::vector<float> pos = {-1, -1, -1, 1, -1, -1, 0, -1, 1, 0, 1, 0};
+  const std::vector<uint32_t> idx = {0, 1, 2, 0, 3, 1, 1, 3, 2, 2, 3, 0};
+  ASSERT_TRUE(r->registerMesh(42, pos, idx, &error)) << error;
+  EXPECT_TRUE(r->hasMesh(42));
+  ASSERT_TRUE(r->render(f, px, &error)) << error;
+  EXPECT_TRUE(test::isRed(at(px, 160, 80, 62)));
+  EXPECT_FALSE(r->registerMesh(43, pos, {0, 1, 99}, &error)) << "out-of-range indices leave nothing";
+}
+
+// Prints (does not assert) the frame time of the performance target: 2000 boxes, 1280x720,
+// shadows 2048 and 4x MSAA, with and without the overlay. Timings on a shared machine are noisy.
+TEST(RenderBenchmark, Stacks2000FrameTimePrinted) {
+  RendererOptions o;  // defaults: 1280x720, 4x MSAA, 2048 shadow map
+  std::string error;
+  auto r = Renderer::create(o, &error);
+  ASSERT_TRUE(r) << error;
+  FrameInput f;
+  f.instances.push_back(groundBox());
+  const int n = 2000, k = static_cast<int>(std::ceil(std::sqrt(std::ceil(n / 10.0))));
+  for (int i = 0; i < n; ++i) {
+    Instance b;
+    b.bodyId = static_cast<uint32_t>(i);
+    const int s = i / 10, hgt = i % 10;
+    b.position[0] = 3.f * static_cast<float>(s % k);
+    b.position[1] = 0.5f + 1.01f * static_cast<float>(hgt);
+    b.position[2] = 3.f * static_cast<float>(s / k);
+    f.instances.push_back(b);
+  }
+  for (int i = 0; i < 240; ++i) {
+    f.overlay.iterations.push_back(10.f);
+    f.overlay.collisionMs.push_back(2.f);
+    f.overlay.solveMs.push_back(4.f);
+  }
+  std::vector<uint8_t> px;
+  for (bool overlay : {false, true}) {
+    f.overlay.enabled = overlay;
+    ASSERT_TRUE(r->render(f, px, &error)) << error;  // warm-up (font, buffers)
+    double best = 1e30, sum = 0.0;
+    const int frames = 3;
+    for (int i = 0; i < frames; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      ASSERT_TRUE(r->render(f, px, &error)) << error;
+      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      best = std::min(best, ms), sum += ms;
+    }
+    std::printf("[ bench    ] stacks_2000 1280x720 shadows+%dxMSAA overlay=%s: mean %.1f ms, best %.1f ms\n",
+                r->msaaSamples(), overlay ? "on" : "off", sum / frames, best);
+  }
+}
+
+}  // namespace
+}  // namespace haif::render
