@@ -1,0 +1,163 @@
+// Polyhedron against polyhedron (box-hull, hull-hull, triangle-convex). SAT over the face normals of
+// both and the cross products of all edge pairs, then clipping of the incident face against the side
+// planes of the reference face, or one point between two edges. Computed in A's frame.
+#include "collision/clip_polygon.h"
+#include "collision/geometry.h"
+#include "collision/polytope.h"
+
+namespace haif {
+namespace detail {
+
+namespace {
+
+// Same preference as box-box: faces beat edges, A's faces beat B's, unless clearly worse.
+constexpr float kFaceBTol = 5e-4f;
+constexpr float kEdgeAbsTol = 1e-3f;
+constexpr float kEdgeRelTol = 0.02f;
+constexpr int kMaxIncident = 64;
+
+// Among the edges parallel to edge e, the one farthest along d (its midpoint).
+int supportingEdge(const PolyView& P, int e, const Vec3& d) {
+  const Vec3 dir = (P.verts[P.edges[e].second] - P.verts[P.edges[e].first]).normalized();
+  int best = e;
+  float bestDot = -1e30f;
+  for (int k = 0; k < P.numEdges; ++k) {
+    const Vec3& a = P.verts[P.edges[k].first];
+    const Vec3& b = P.verts[P.edges[k].second];
+    const Vec3 dk = b - a;
+    if (dk.cross(dir).squaredNorm() > 1e-6f * dk.squaredNorm()) continue;
+    const float x = d.dot(a + b);
+    if (x > bestDot) { bestDot = x; best = k; }
+  }
+  return best;
+}
+
+}  // namespace
+
+int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, const Transform& xb, float margin,
+                    Manifold& m) {
+  m.count = 0;
+  const Mat3 Ra = xa.q.toRotationMatrix();
+  const Mat3 R = Ra.transpose() * xb.q.toRotationMatrix();  // B -> A rotation
+  const Vec3 t = Ra.transpose() * (xb.p - xa.p);
+  const Mat3 Rt = R.transpose();
+
+  // Faces of A: how far B's vertices stay above each plane.
+  float sepA = -1e30f;
+  int faceA = -1;
+  for (int f = 0; f < A.numFaces; ++f) {
+    const ConvexHull::Face& F = A.faces[f];
+    const float s = B.minDot(Rt * F.normal) + t.dot(F.normal) - F.offset;
+    if (s > margin) return 0;
+    if (s > sepA) { sepA = s; faceA = f; }
+  }
+  // Faces of B, expressed in A's frame.
+  float sepB = -1e30f;
+  int faceB = -1;
+  for (int f = 0; f < B.numFaces; ++f) {
+    const ConvexHull::Face& F = B.faces[f];
+    const Vec3 n = R * F.normal;
+    const float s = A.minDot(n) - (F.offset + t.dot(n));
+    if (s > margin) return 0;
+    if (s > sepB) { sepB = s; faceB = f; }
+  }
+  // Edge pairs.
+  float sepE = -1e30f;
+  int edgeA = -1, edgeB = -1;
+  Vec3 edgeAxis = Vec3::Zero();
+  for (int i = 0; i < A.numEdges; ++i) {
+    const Vec3 da = A.verts[A.edges[i].second] - A.verts[A.edges[i].first];
+    for (int j = 0; j < B.numEdges; ++j) {
+      const Vec3 dbB = B.verts[B.edges[j].second] - B.verts[B.edges[j].first];
+      const Vec3 db = R * dbB;
+      Vec3 L = da.cross(db);
+      const float l2 = L.squaredNorm();
+      if (l2 < 1e-8f * da.squaredNorm() * db.squaredNorm()) continue;  // parallel edges
+      L /= std::sqrt(l2);
+      float aLo, aHi, bLo, bHi;
+      A.interval(L, aLo, aHi);
+      B.interval(Rt * L, bLo, bHi);
+      const float tl = t.dot(L);
+      bLo += tl;
+      bHi += tl;
+      float s = bLo - aHi;
+      if (aLo - bHi > s) { s = aLo - bHi; L = -L; }
+      if (s > margin) return 0;
+      if (s > sepE) { sepE = s; edgeA = i; edgeB = j; edgeAxis = L; }
+    }
+  }
+  if (faceA < 0 && faceB < 0) return 0;
+
+  const bool refIsB = faceB >= 0 && (faceA < 0 || sepB > sepA + kFaceBTol);
+  const float faceSep = refIsB ? sepB : sepA;
+  // Edge-edge: one point between the closest points of the two edges.
+  auto edgeContact = [&]() {
+    // The axis came from the first edge pair with that direction; the touching edges are the
+    // parallel ones that support A along +L and B along -L.
+    const Vec3 L = edgeAxis, Lb = Rt * edgeAxis;
+    edgeA = supportingEdge(A, edgeA, L);
+    edgeB = supportingEdge(B, edgeB, -Lb);
+    const Vec3 a0 = A.verts[A.edges[edgeA].first], a1 = A.verts[A.edges[edgeA].second];
+    const Vec3 b0 = R * B.verts[B.edges[edgeB].first] + t, b1 = R * B.verts[B.edges[edgeB].second] + t;
+    float s, u;
+    closestSegmentSegment(a0, a1, b0, b1, s, u);
+    const Vec3 qa = a0 + s * (a1 - a0), qb = b0 + u * (b1 - b0);
+    const uint32_t id = 0x40000000u | ((uint32_t(edgeA) & 0x7FFFu) << 15) | (uint32_t(edgeB) & 0x7FFFu);
+    return writeSingle(m, xa.apply(0.5f * (qa + qb)), Ra * edgeAxis, -sepE, id);
+  };
+  if (edgeA >= 0 && sepE > faceSep + kEdgeAbsTol + kEdgeRelTol * std::fabs(faceSep)) return edgeContact();
+
+  // Reference face (in A's frame) and the incident face: the other's most anti-parallel face.
+  const PolyView& ref = refIsB ? B : A;
+  const PolyView& inc = refIsB ? A : B;
+  const int rf = refIsB ? faceB : faceA;
+  const ConvexHull::Face& RF = ref.faces[rf];
+  const Vec3 nRef = refIsB ? Vec3(R * RF.normal) : RF.normal;
+  const float offRef = refIsB ? RF.offset + t.dot(nRef) : RF.offset;
+  // Incident face normals live in inc's frame: bring nRef there.
+  const Vec3 nInInc = refIsB ? nRef : Vec3(Rt * nRef);
+  int incFace = 0;
+  float best = 1e30f;
+  for (int f = 0; f < inc.numFaces; ++f) {
+    const float d = inc.faces[f].normal.dot(nInInc);
+    if (d < best) { best = d; incFace = f; }
+  }
+
+  ClipPoint bufA[kMaxClipVerts], bufB[kMaxClipVerts];
+  const int nInc = std::min<int>(int(inc.faces[incFace].count), kMaxIncident);
+  for (int k = 0; k < nInc; ++k) {
+    const Vec3& v = inc.faceVertex(incFace, k);
+    bufA[k] = ClipPoint{refIsB ? v : Vec3(R * v + t), uint16_t(k), uint8_t(k & 0x7F)};
+  }
+  int n = nInc;
+  ClipPoint* cur = bufA;
+  ClipPoint* nxt = bufB;
+  const int nRefV = int(RF.count);
+  for (int k = 0; k < nRefV && n > 0; ++k) {
+    const Vec3& v0 = ref.faceVertex(rf, k);
+    const Vec3& v1 = ref.faceVertex(rf, (k + 1) % nRefV);
+    const Vec3 p0 = refIsB ? Vec3(R * v0 + t) : v0;
+    const Vec3 p1 = refIsB ? Vec3(R * v1 + t) : v1;
+    const Vec3 side = (p1 - p0).cross(nRef);  // outward for a CCW face
+    const float len = side.norm();
+    if (len < 1e-12f) continue;
+    n = clipPolygon(cur, n, nxt, side / len, side.dot(p0) / len, uint32_t(k));
+    std::swap(cur, nxt);
+  }
+
+  const Vec3 nWorld = Ra * (refIsB ? Vec3(-nRef) : nRef);
+  const uint32_t idBase = (refIsB ? 0x80000000u : 0u) | ((uint32_t(rf) & 0x7Fu) << 23) |
+                          ((uint32_t(incFace) & 0x7Fu) << 16);
+  ContactBuffer buf;
+  for (int i = 0; i < n; ++i) {
+    const float s = nRef.dot(cur[i].p) - offRef;
+    if (s > margin) continue;
+    buf.add(xa.apply(cur[i].p - (0.5f * s) * nRef), nWorld, -s, idBase | cur[i].fid);
+  }
+  // Clipping can leave nothing when the faces only meet at a rim (thin triangles): use the edges then.
+  if (buf.count == 0 && edgeA >= 0 && sepE <= margin) return edgeContact();
+  return writeManifold(buf, m);
+}
+
+}  // namespace detail
+}  // namespace haif

@@ -1,0 +1,60 @@
+// Helpers shared by the narrow-phase tests.
+#pragma once
+
+#include "collision/collide.h"
+
+#include <gtest/gtest.h>
+
+namespace haif {
+namespace test {
+
+inline Transform xf(const Vec3& p, const Quat& q = Quat::Identity()) {
+  Transform t;
+  t.p = p;
+  t.q = q.normalized();
+  return t;
+}
+
+inline Quat axisAngle(const Vec3& axis, float angle) { return Quat(Eigen::AngleAxisf(angle, axis.normalized())); }
+
+/// Index of the manifold point closest to p (or -1).
+inline int findPoint(const Manifold& m, const Vec3& p, float tol) {
+  for (int i = 0; i < m.count; ++i)
+    if ((m.points[i].position - p).norm() <= tol) return i;
+  return -1;
+}
+
+inline void expectVecNear(const Vec3& a, const Vec3& b, float tol) {
+  EXPECT_NEAR(a.x(), b.x(), tol);
+  EXPECT_NEAR(a.y(), b.y(), tol);
+  EXPECT_NEAR(a.z(), b.z(), tol);
+}
+
+/// Every point has the given normal and depth.
+inline void expectAll(const Manifold& m, const Vec3& n, float depth, float tol = 1e-4f) {
+  for (int i = 0; i < m.count; ++i) {
+    expectVecNear(m.points[i].normal, n, tol);
+    EXPECT_NEAR(m.points[i].depth, depth, tol);
+  }
+}
+
+/// collide() in both orders: the reversed call must give the same points with flipped normals.
+inline int collideBoth(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, float margin,
+                       Manifold& m) {
+  const int n = collide(a, xa, b, xb, margin, m);
+  Manifold r;
+  const int nr = collide(b, xb, a, xa, margin, r);
+  EXPECT_EQ(n, nr);
+  for (int i = 0; i < std::min(n, nr); ++i) {
+    int k = findPoint(r, m.points[i].position, 1e-4f);
+    EXPECT_GE(k, 0) << "reversed call lacks point " << i;
+    if (k >= 0) {
+      expectVecNear(r.points[k].normal, -m.points[i].normal, 1e-4f);
+      EXPECT_NEAR(r.points[k].depth, m.points[i].depth, 1e-4f);
+    }
+  }
+  return n;
+}
+
+}  // namespace test
+}  // namespace haif

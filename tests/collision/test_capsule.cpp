@@ -1,0 +1,103 @@
+// Known-answer tests: capsule against capsule and box.
+#include "collision_test_util.h"
+
+namespace haif {
+namespace {
+
+using test::axisAngle;
+using test::collideBoth;
+using test::expectAll;
+using test::expectVecNear;
+using test::findPoint;
+using test::xf;
+
+const Quat kAlongX = axisAngle(Vec3::UnitZ(), kPi / 2);  // capsule axis from y to x
+
+TEST(CapsuleCapsule, CrossedGivesOnePoint) {
+  const Shape cap = Shape::capsule(0.5f, 1.0f);
+  Manifold m;
+  ASSERT_EQ(collideBoth(cap, xf(Vec3::Zero(), kAlongX), cap, xf(Vec3(0.3f, 0.9f, 0.2f), axisAngle(Vec3::UnitX(), kPi / 2)),
+                        0.0f, m), 1);
+  EXPECT_NEAR(m.points[0].depth, 0.1f, 1e-5f);
+  expectVecNear(m.points[0].normal, Vec3::UnitY(), 1e-5f);
+  expectVecNear(m.points[0].position, Vec3(0.3f, 0.45f, 0.0f), 1e-5f);
+}
+
+TEST(CapsuleCapsule, ParallelGivesTwoPoints) {
+  const Shape cap = Shape::capsule(0.5f, 1.0f);
+  Manifold m;
+  ASSERT_EQ(collideBoth(cap, xf(Vec3::Zero(), kAlongX), cap, xf(Vec3(0.5f, 0.95f, 0), kAlongX), 0.0f, m), 2);
+  expectAll(m, Vec3::UnitY(), 0.05f, 1e-5f);
+  EXPECT_GE(findPoint(m, Vec3(-0.5f, 0.475f, 0), 1e-4f), 0);
+  EXPECT_GE(findPoint(m, Vec3(1.0f, 0.475f, 0), 1e-4f), 0);
+}
+
+TEST(CapsuleCapsule, EndToEndAndSeparated) {
+  const Shape cap = Shape::capsule(0.25f, 0.5f);
+  Manifold m;
+  ASSERT_EQ(collide(cap, xf(Vec3::Zero()), cap, xf(Vec3(0, 1.45f, 0)), 0.0f, m), 1);
+  EXPECT_NEAR(m.points[0].depth, 0.05f, 1e-5f);
+  expectVecNear(m.points[0].normal, Vec3::UnitY(), 1e-5f);
+  EXPECT_EQ(collide(cap, xf(Vec3::Zero()), cap, xf(Vec3(0.7f, 0, 0)), 0.1f, m), 0);
+  ASSERT_EQ(collide(cap, xf(Vec3::Zero()), cap, xf(Vec3(0.55f, 0.2f, 0)), 0.1f, m), 2);
+  expectAll(m, Vec3::UnitX(), -0.05f, 1e-5f);
+}
+
+TEST(CapsuleBox, LyingOnBoxGivesTwoPoints) {
+  const Shape box = Shape::box(Vec3(2, 0.5f, 2));
+  const Shape cap = Shape::capsule(0.25f, 0.75f);
+  Manifold m;
+  ASSERT_EQ(collideBoth(box, xf(Vec3::Zero()), cap, xf(Vec3(0.5f, 0.73f, 1.0f), kAlongX), 0.0f, m), 2);
+  expectAll(m, Vec3::UnitY(), 0.02f, 1e-5f);
+  EXPECT_GE(findPoint(m, Vec3(-0.25f, 0.49f, 1.0f), 1e-5f), 0);
+  EXPECT_GE(findPoint(m, Vec3(1.25f, 0.49f, 1.0f), 1e-5f), 0);
+  // Speculative: lying 0.05 above with margin 0.1.
+  ASSERT_EQ(collide(cap, xf(Vec3(0.5f, 0.80f, 1.0f), kAlongX), box, xf(Vec3::Zero()), 0.1f, m), 2);
+  expectAll(m, -Vec3::UnitY(), -0.05f, 1e-5f);
+}
+
+TEST(CapsuleBox, OverhangingTheEdgeClipsToTheFace) {
+  const Shape box = Shape::box(Vec3(1, 0.5f, 1));
+  const Shape cap = Shape::capsule(0.25f, 1.0f);
+  Manifold m;
+  ASSERT_EQ(collide(box, xf(Vec3::Zero()), cap, xf(Vec3(1.5f, 0.74f, 0), kAlongX), 0.0f, m), 2);
+  expectAll(m, Vec3::UnitY(), 0.01f, 1e-5f);
+  EXPECT_GE(findPoint(m, Vec3(0.5f, 0.495f, 0), 1e-5f), 0);
+  EXPECT_GE(findPoint(m, Vec3(1.0f, 0.495f, 0), 1e-5f), 0);
+}
+
+TEST(CapsuleBox, UprightOnCornerRegion) {
+  // Upright capsule beside the box's +x,+z vertical edge: one point, normal from the edge outwards.
+  const Shape box = Shape::box(Vec3(0.5f, 0.5f, 0.5f));
+  const Shape cap = Shape::capsule(0.3f, 0.5f);
+  const float d = 0.25f / std::sqrt(2.0f);
+  Manifold m;
+  ASSERT_EQ(collide(box, xf(Vec3::Zero()), cap, xf(Vec3(0.5f + d, 0.2f, 0.5f + d)), 0.0f, m), 1);
+  EXPECT_NEAR(m.points[0].depth, 0.05f, 1e-5f);
+  expectVecNear(m.points[0].normal, Vec3(1, 0, 1).normalized(), 1e-5f);
+}
+
+TEST(CapsuleBox, DeepPenetrationUsesCheapestExit) {
+  // Core segment passes through the box top: exit upwards.
+  const Shape box = Shape::box(Vec3(1, 0.5f, 1));
+  const Shape cap = Shape::capsule(0.2f, 0.5f);
+  Manifold m;
+  ASSERT_GE(collide(box, xf(Vec3::Zero()), cap, xf(Vec3(0.1f, 0.7f, 0.0f)), 0.0f, m), 1);
+  expectVecNear(m.points[0].normal, Vec3::UnitY(), 1e-5f);
+  // Lower end at y = 0.2: 0.3 below the face plus the radius.
+  EXPECT_NEAR(m.points[0].depth, 0.5f, 1e-5f);
+}
+
+TEST(CapsuleBox, RotatedBoxKnownAnswer) {
+  const Quat q = axisAngle(Vec3(0.3f, -1.0f, 0.4f), 0.8f);
+  const Vec3 o(-2, 3, 1);
+  const Shape box = Shape::box(Vec3(2, 0.5f, 2));
+  const Shape cap = Shape::capsule(0.25f, 0.75f);
+  Manifold m;
+  ASSERT_EQ(collide(box, xf(o, q), cap, xf(o + q * Vec3(0.5f, 0.73f, 1.0f), q * kAlongX), 0.0f, m), 2);
+  expectAll(m, q * Vec3::UnitY(), 0.02f, 1e-4f);
+  EXPECT_GE(findPoint(m, o + q * Vec3(-0.25f, 0.49f, 1.0f), 1e-4f), 0);
+}
+
+}  // namespace
+}  // namespace haif

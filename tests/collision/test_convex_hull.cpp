@@ -1,0 +1,222 @@
+// Convex hull construction (topology, mass properties, errors) and hull collisions.
+#include "collision/convex_hull.h"
+#include "collision_test_util.h"
+
+#include <limits>
+#include <random>
+#include <set>
+
+namespace haif {
+namespace {
+
+using test::axisAngle;
+using test::collideBoth;
+using test::expectAll;
+using test::expectVecNear;
+using test::findPoint;
+using test::xf;
+
+std::vector<Vec3> cubeCorners(const Vec3& h, const Vec3& centre = Vec3::Zero()) {
+  std::vector<Vec3> p;
+  for (int i = 0; i < 8; ++i) p.push_back(centre + Vec3((i & 1) ? h.x() : -h.x(), (i & 2) ? h.y() : -h.y(), (i & 4) ? h.z() : -h.z()));
+  return p;
+}
+
+std::shared_ptr<ConvexHull> mustBuild(const std::vector<Vec3>& pts) {
+  std::string err;
+  auto h = buildConvexHull(pts, &err);
+  EXPECT_TRUE(h) << err;
+  return h;
+}
+
+TEST(ConvexHullBuild, CubeTopologyAndMass) {
+  // Cube of half extent 1 with extra interior and face-centre points that must not survive.
+  auto pts = cubeCorners(Vec3(1, 1, 1), Vec3(3, -1, 2));
+  pts.push_back(Vec3(3, -1, 2));
+  pts.push_back(Vec3(3.2f, -0.5f, 2.1f));
+  pts.push_back(Vec3(4, -1, 2));  // centre of the +x face
+  auto h = mustBuild(pts);
+  ASSERT_TRUE(h);
+  EXPECT_EQ(h->vertices.size(), 8u);
+  EXPECT_EQ(h->faces.size(), 6u);
+  EXPECT_EQ(h->edges.size(), 12u);
+  EXPECT_EQ(h->faceVertices.size(), 24u);
+  EXPECT_NEAR(h->volume, 8.0f, 1e-4f);
+  expectVecNear(h->centroid, Vec3(3, -1, 2), 1e-5f);
+  // Closed form: I = m/12 (b^2 + c^2) = 8/12 * 8 for side 2, density 1.
+  const float I = 8.0f / 12.0f * 8.0f;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(h->inertiaPerDensity(r, c), r == c ? I : 0.0f, 1e-3f);
+  // Vertices recentred, faces outward with offset 1 and CCW from outside.
+  for (const Vec3& v : h->vertices) EXPECT_NEAR(v.cwiseAbs().maxCoeff(), 1.0f, 1e-5f);
+  for (const auto& f : h->faces) {
+    EXPECT_NEAR(f.offset, 1.0f, 1e-5f);
+    EXPECT_NEAR(f.normal.cwiseAbs().maxCoeff(), 1.0f, 1e-5f);
+    ASSERT_EQ(f.count, 4u);
+    const Vec3 a = h->vertices[h->faceVertices[f.first]], b = h->vertices[h->faceVertices[f.first + 1]],
+               c = h->vertices[h->faceVertices[f.first + 2]];
+    EXPECT_GT((b - a).cross(c - b).dot(f.normal), 0.0f);
+  }
+  const MassProperties mp = computeMassProperties(Shape::convexHull(h), 2.0f);
+  EXPECT_NEAR(mp.mass, 16.0f, 1e-3f);
+}
+
+TEST(ConvexHullBuild, BoxInertiaMatchesShapeFormula) {
+  auto h = mustBuild(cubeCorners(Vec3(0.5f, 1.0f, 2.0f)));
+  ASSERT_TRUE(h);
+  const MassProperties hm = computeMassProperties(Shape::convexHull(h), 3.0f);
+  const MassProperties bm = computeMassProperties(Shape::box(Vec3(0.5f, 1.0f, 2.0f)), 3.0f);
+  EXPECT_NEAR(hm.mass, bm.mass, 1e-3f);
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(hm.inertia(r, c), bm.inertia(r, c), 1e-2f);
+}
+
+TEST(ConvexHullBuild, TetrahedronCentroidAndVolume) {
+  auto h = mustBuild({Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 2, 0), Vec3(0, 0, 2)});
+  ASSERT_TRUE(h);
+  EXPECT_NEAR(h->volume, 8.0f / 6.0f, 1e-5f);
+  expectVecNear(h->centroid, Vec3(0.5f, 0.5f, 0.5f), 1e-5f);
+  EXPECT_EQ(h->faces.size(), 4u);
+  EXPECT_EQ(h->edges.size(), 6u);
+  Vec3 sum = Vec3::Zero();
+  for (const Vec3& v : h->vertices) sum += v;
+  expectVecNear(sum / 4.0f, Vec3::Zero(), 1e-5f);  // recentred
+}
+
+TEST(ConvexHullBuild, RandomSphereCloudIsConvexAndContainsAllPoints) {
+  std::mt19937 rng(7);
+  std::normal_distribution<float> g(0.0f, 1.0f);
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 300; ++i) pts.push_back(Vec3(g(rng), g(rng), g(rng)).normalized() * 2.0f);
+  for (int i = 0; i < 100; ++i) pts.push_back(Vec3(g(rng), g(rng), g(rng)).normalized() * 1.0f);
+  auto h = mustBuild(pts);
+  ASSERT_TRUE(h);
+  const float sphereVol = 4.0f / 3.0f * kPi * 8.0f;
+  EXPECT_LT(h->volume, sphereVol);
+  EXPECT_GT(h->volume, 0.9f * sphereVol);
+  EXPECT_LT(h->centroid.norm(), 0.1f);
+  // Euler: V - E + F = 2.
+  EXPECT_EQ(int(h->vertices.size()) - int(h->edges.size()) + int(h->faces.size()), 2);
+  for (const Vec3& p : pts)
+    for (const auto& f : h->faces) EXPECT_LE(f.normal.dot(p - h->centroid) - f.offset, 1e-4f);
+}
+
+TEST(ConvexHullBuild, BadInputGivesClearErrors) {
+  std::string err;
+  EXPECT_EQ(buildConvexHull({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, &err), nullptr);
+  EXPECT_NE(err.find("at least 4"), std::string::npos) << err;
+  err.clear();
+  EXPECT_EQ(buildConvexHull({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0), Vec3(2, 5, 0)}, &err), nullptr);
+  EXPECT_NE(err.find("coplanar"), std::string::npos) << err;
+  err.clear();
+  EXPECT_EQ(buildConvexHull({Vec3(0, 0, 0), Vec3(1, 1, 1), Vec3(2, 2, 2), Vec3(3, 3, 3)}, &err), nullptr);
+  EXPECT_NE(err.find("collinear"), std::string::npos) << err;
+  err.clear();
+  EXPECT_EQ(buildConvexHull(std::vector<Vec3>(5, Vec3(1, 2, 3)), &err), nullptr);
+  EXPECT_NE(err.find("coincide"), std::string::npos) << err;
+  err.clear();
+  auto pts = cubeCorners(Vec3(1, 1, 1));
+  pts[5].y() = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(buildConvexHull(pts, &err), nullptr);
+  EXPECT_NE(err.find("point 5"), std::string::npos) << err;
+  EXPECT_EQ(buildConvexHull(pts, nullptr), nullptr);  // no error string requested: still no crash
+}
+
+// A hull built from a box's corners collides exactly like the box.
+TEST(HullCollision, CubeHullBehavesLikeBox) {
+  auto h = mustBuild(cubeCorners(Vec3::Constant(0.5f)));
+  ASSERT_TRUE(h);
+  const Shape hull = Shape::convexHull(h);
+  const Shape box = Shape::box(Vec3::Constant(0.5f));
+  struct Case { Transform ta, tb; };
+  const Case cases[] = {
+      {xf(Vec3::Zero()), xf(Vec3(0.2f, 0.95f, -0.1f))},
+      {xf(Vec3::Zero()), xf(Vec3(0.0f, 0.98f, 0.0f), axisAngle(Vec3::UnitY(), 0.6f))},
+      {xf(Vec3(1, 2, 3), axisAngle(Vec3(1, 1, 0), 0.4f)), xf(Vec3(1, 2, 3) + axisAngle(Vec3(1, 1, 0), 0.4f) * Vec3(0.9f, 0.3f, 0), axisAngle(Vec3(1, 1, 0), 0.4f))},
+      {xf(Vec3::Zero(), axisAngle(Vec3::UnitZ(), kPi / 4)), xf(Vec3(0, std::sqrt(2.0f) - 0.1f, 0), axisAngle(Vec3::UnitX(), kPi / 4))},
+  };
+  for (const Case& c : cases) {
+    Manifold mb, mh, mhb;
+    const int nb = collide(box, c.ta, box, c.tb, 0.01f, mb);
+    ASSERT_EQ(collideBoth(hull, c.ta, hull, c.tb, 0.01f, mh), nb);
+    ASSERT_EQ(collideBoth(box, c.ta, hull, c.tb, 0.01f, mhb), nb);
+    for (int i = 0; i < nb; ++i) {
+      const int k = findPoint(mh, mb.points[i].position, 1e-4f);
+      const int k2 = findPoint(mhb, mb.points[i].position, 1e-4f);
+      ASSERT_GE(k, 0);
+      ASSERT_GE(k2, 0);
+      EXPECT_NEAR(mh.points[k].depth, mb.points[i].depth, 1e-4f);
+      expectVecNear(mh.points[k].normal, mb.points[i].normal, 1e-4f);
+      EXPECT_NEAR(mhb.points[k2].depth, mb.points[i].depth, 1e-4f);
+    }
+  }
+}
+
+TEST(HullCollision, IdsStableAndSeparation) {
+  auto h = mustBuild(cubeCorners(Vec3::Constant(0.5f)));
+  ASSERT_TRUE(h);
+  const Shape hull = Shape::convexHull(h);
+  Manifold m1, m2;
+  ASSERT_EQ(collide(hull, xf(Vec3::Zero()), hull, xf(Vec3(0.1f, 0.99f, 0.05f)), 0.0f, m1), 4);
+  ASSERT_EQ(collide(hull, xf(Vec3(0, 1e-4f, 0)), hull, xf(Vec3(0.1002f, 0.9902f, 0.0501f), axisAngle(Vec3(1, 2, 3), 1e-3f)), 0.0f, m2), 4);
+  std::set<uint32_t> a, b;
+  for (int i = 0; i < 4; ++i) { a.insert(m1.points[i].id); b.insert(m2.points[i].id); }
+  EXPECT_EQ(a.size(), 4u);
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(collide(hull, xf(Vec3::Zero()), hull, xf(Vec3(0.1f, 1.2f, 0)), 0.1f, m1), 0);
+  ASSERT_EQ(collide(hull, xf(Vec3::Zero()), hull, xf(Vec3(0.1f, 1.05f, 0)), 0.1f, m1), 4);
+  expectAll(m1, Vec3::UnitY(), -0.05f, 1e-5f);
+}
+
+TEST(HullCollision, SphereAgainstHull) {
+  auto h = mustBuild({Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 2, 0), Vec3(0, 0, 2)});
+  ASSERT_TRUE(h);
+  const Shape hull = Shape::convexHull(h);
+  // Hull body placed so its input frame coincides with the world: origin at the centroid.
+  const Transform th = xf(h->centroid);
+  Manifold m;
+  // Above the slanted face x + y + z = 2.
+  const Vec3 n = Vec3(1, 1, 1).normalized();
+  const Vec3 onFace(2.0f / 3, 2.0f / 3, 2.0f / 3);
+  ASSERT_EQ(collideBoth(Shape::sphere(0.5f), xf(onFace + 0.4f * n), hull, th, 0.0f, m), 1);
+  EXPECT_NEAR(m.points[0].depth, 0.1f, 1e-5f);
+  expectVecNear(m.points[0].normal, -n, 1e-5f);  // sphere (a) towards hull (b)
+  expectVecNear(m.points[0].position, onFace - 0.05f * n, 1e-5f);  // surfaces at onFace and onFace - 0.1n
+  // Near the vertex (2,0,0), beyond it along +x.
+  ASSERT_EQ(collide(hull, th, Shape::sphere(0.5f), xf(Vec3(2.45f, 0, 0)), 0.0f, m), 1);
+  EXPECT_NEAR(m.points[0].depth, 0.05f, 1e-5f);
+  expectVecNear(m.points[0].normal, Vec3::UnitX(), 1e-5f);
+  // Centre inside the hull, nearest face z = 0: pushed along -z, depth = 0.1 + r.
+  ASSERT_EQ(collide(hull, th, Shape::sphere(0.3f), xf(Vec3(0.4f, 0.5f, 0.1f)), 0.0f, m), 1);
+  expectVecNear(m.points[0].normal, -Vec3::UnitZ(), 1e-5f);
+  EXPECT_NEAR(m.points[0].depth, 0.4f, 1e-5f);
+  // Separated beyond margin.
+  EXPECT_EQ(collide(hull, th, Shape::sphere(0.5f), xf(Vec3(-0.7f, 0.5f, 0.5f)), 0.1f, m), 0);
+}
+
+TEST(HullCollision, CapsuleLyingOnHull) {
+  auto h = mustBuild(cubeCorners(Vec3(2, 0.5f, 2)));
+  ASSERT_TRUE(h);
+  const Shape hull = Shape::convexHull(h);
+  const Shape cap = Shape::capsule(0.25f, 0.75f);
+  Manifold m;
+  ASSERT_EQ(collideBoth(hull, xf(Vec3::Zero()), cap, xf(Vec3(0.5f, 0.73f, 1.0f), axisAngle(Vec3::UnitZ(), kPi / 2)), 0.0f, m), 2);
+  expectAll(m, Vec3::UnitY(), 0.02f, 1e-5f);
+  EXPECT_GE(findPoint(m, Vec3(1.25f, 0.49f, 1.0f), 1e-5f), 0);
+}
+
+TEST(HullCollision, OctahedronPointDownOnBox) {
+  // Octahedron vertex pointing into a box face: one point at the tip.
+  auto h = mustBuild({Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1)});
+  ASSERT_TRUE(h);
+  EXPECT_NEAR(h->volume, 4.0f / 3.0f, 1e-5f);
+  EXPECT_EQ(h->faces.size(), 8u);
+  Manifold m;
+  ASSERT_EQ(collideBoth(Shape::box(Vec3(2, 0.5f, 2)), xf(Vec3::Zero()), Shape::convexHull(h), xf(Vec3(0.3f, 1.45f, 0)), 0.0f, m), 1);
+  EXPECT_NEAR(m.points[0].depth, 0.05f, 1e-5f);
+  expectVecNear(m.points[0].normal, Vec3::UnitY(), 1e-5f);
+  expectVecNear(m.points[0].position, Vec3(0.3f, 0.475f, 0), 1e-5f);
+}
+
+}  // namespace
+}  // namespace haif
