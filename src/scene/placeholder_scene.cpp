@@ -1,1 +1,0 @@
-// Scene loading lands here (placeholder so the library has a source).

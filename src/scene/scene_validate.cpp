@@ -1,0 +1,179 @@
+#include "scene/scene_validate.h"
+
+#include "scene/json_reader.h"
+
+#include <cmath>
+
+namespace haif {
+
+std::string SceneIssue::describe(const SceneDesc& scene) const {
+  std::string place;
+  if (body >= 0 && body < static_cast<int>(scene.bodies.size())) {
+    const std::string& w = scene.bodies[static_cast<size_t>(body)].where;
+    place = w.empty() ? "bodies[" + std::to_string(body) + "]" : w;
+  } else if (water >= 0) {
+    place = "water[" + std::to_string(water) + "]";
+  }
+  if (!field.empty()) place += (place.empty() ? "" : ".") + field;
+  return (place.empty() ? "scene" : place) + ": " + message;
+}
+
+bool isStaticOnlyShape(ShapeType t) { return t == ShapeType::Plane || t == ShapeType::TriangleMesh; }
+
+std::string hullPointsProblem(const std::vector<Vec3>& points) {
+  if (points.size() < 4) return "a hull needs at least 4 points (got " + std::to_string(points.size()) + ")";
+  // Extreme points: p0, farthest from p0, farthest from that line, farthest from that plane.
+  const Vec3 p0 = points[0];
+  Vec3 p1 = p0;
+  for (const Vec3& p : points)
+    if ((p - p0).squaredNorm() > (p1 - p0).squaredNorm()) p1 = p;
+  const float size = (p1 - p0).norm();
+  if (!(size > 0.0f)) return "all hull points are the same point";
+  const Vec3 axis = (p1 - p0) / size;
+  Vec3 p2 = p0;
+  float best = 0.0f;
+  for (const Vec3& p : points) {
+    const float d = ((p - p0) - axis * axis.dot(p - p0)).norm();
+    if (d > best) best = d, p2 = p;
+  }
+  if (best <= 1e-5f * size) return "all hull points lie on one line";
+  const Vec3 normal = (p1 - p0).cross(p2 - p0).normalized();
+  float depth = 0.0f;
+  for (const Vec3& p : points) depth = std::max(depth, std::fabs(normal.dot(p - p0)));
+  if (depth <= 1e-5f * size) return "all hull points lie in one plane (a hull needs volume)";
+  return "";
+}
+
+namespace {
+
+bool finite(float f) { return std::isfinite(f); }
+
+// Helpers return false after filling the issue, so checks read as `if (!positive(...)) return false;`.
+struct Checker {
+  SceneIssue& issue;
+  int body = -1;
+  int water = -1;
+
+  bool bad(const std::string& field, const std::string& message) {
+    issue.body = body;
+    issue.water = water;
+    issue.field = field;
+    issue.message = message;
+    return false;
+  }
+  bool isFiniteNum(const std::string& field, float v) { return finite(v) || bad(field, "must be a finite number (got " + formatNumber(v) + ")"); }
+  bool positive(const std::string& field, float v) {
+    if (!isFiniteNum(field, v)) return false;
+    return v > 0.0f || bad(field, "must be > 0 (got " + formatNumber(v) + ")");
+  }
+  bool nonNegative(const std::string& field, float v) {
+    if (!isFiniteNum(field, v)) return false;
+    return v >= 0.0f || bad(field, "must be >= 0 (got " + formatNumber(v) + ")");
+  }
+  bool finiteVec(const std::string& field, const Vec3& v) {
+    return isFinite(v) || bad(field, "must be finite (got [" + formatNumber(v.x()) + ", " + formatNumber(v.y()) + ", " + formatNumber(v.z()) + "])");
+  }
+  bool positiveVec(const std::string& field, const Vec3& v) {
+    if (!finiteVec(field, v)) return false;
+    return (v.array() > 0.0f).all() ||
+           bad(field, "every component must be > 0 (got [" + formatNumber(v.x()) + ", " + formatNumber(v.y()) + ", " + formatNumber(v.z()) + "])");
+  }
+};
+
+bool checkShape(Checker& c, const ShapeDesc& s, MotionType motion) {
+  if (isStaticOnlyShape(s.type) && motion != MotionType::Static)
+    return c.bad("shape.type", std::string("shape '") + shapeTypeName(s.type) + "' is static-only; a " +
+                                   (motion == MotionType::Dynamic ? "dynamic" : "kinematic") +
+                                   " body needs sphere, box, capsule or hull");
+  switch (s.type) {
+    case ShapeType::Sphere: return c.positive("shape.radius", s.radius);
+    case ShapeType::Box: return c.positiveVec("shape.half_extents", s.halfExtents);
+    case ShapeType::Capsule: return c.positive("shape.radius", s.radius) && c.nonNegative("shape.half_height", s.halfHeight);
+    case ShapeType::ConvexHull: {
+      for (const Vec3& p : s.points)
+        if (!c.finiteVec("shape.points", p)) return false;
+      const std::string problem = hullPointsProblem(s.points);
+      return problem.empty() || c.bad(s.asset.empty() ? "shape.points" : "shape.asset", problem);
+    }
+    case ShapeType::TriangleMesh: {
+      if (s.meshIndices.empty() || s.meshIndices.size() % 3 != 0)
+        return c.bad("shape.indices", "a mesh needs a positive multiple of 3 indices (got " + std::to_string(s.meshIndices.size()) + ")");
+      for (const Vec3& v : s.meshVertices)
+        if (!c.finiteVec("shape.vertices", v)) return false;
+      for (uint32_t i : s.meshIndices)
+        if (i >= s.meshVertices.size())
+          return c.bad("shape.indices", "index " + std::to_string(i) + " is out of range (" + std::to_string(s.meshVertices.size()) + " vertices)");
+      return true;
+    }
+    case ShapeType::Plane:
+      if (!c.finiteVec("shape.normal", s.planeNormal) || !c.isFiniteNum("shape.offset", s.planeOffset)) return false;
+      return s.planeNormal.norm() > 1e-6f || c.bad("shape.normal", "must not be the zero vector");
+    default: return c.bad("shape.type", "unknown shape type");
+  }
+}
+
+bool checkBody(Checker& c, const SceneDesc& scene, const BodyDesc& b) {
+  if (!c.finiteVec("position", b.position) || !c.finiteVec("velocity", b.linearVelocity) ||
+      !c.finiteVec("angular_velocity", b.angularVelocity))
+    return false;
+  const float qn = b.orientation.norm();
+  if (!std::isfinite(qn) || std::fabs(qn - 1.0f) > 1e-3f)
+    return c.bad("orientation", "must be a unit quaternion (norm " + formatNumber(qn) + ")");
+  if (b.material >= scene.materials.size())
+    return c.bad("material", "material index " + std::to_string(b.material) + " is out of range");
+  if (!c.nonNegative("damping.linear", b.linearDamping) || !c.nonNegative("damping.angular", b.angularDamping)) return false;
+  if (!checkShape(c, b.shape, b.motion)) return false;
+  if (!c.isFiniteNum("mass", b.mass)) return false;
+  if (b.motion == MotionType::Dynamic) {
+    if (b.mass < 0.0f) return c.bad("mass", "must be > 0 for a dynamic body (got " + formatNumber(b.mass) + ")");
+    if (b.mass == 0.0f && !(scene.materials[b.material].density > 0.0f))
+      return c.bad("mass", "a dynamic body needs a mass or a material with density > 0");
+  } else if (b.motion == MotionType::Static) {
+    if (!b.linearVelocity.isZero() || !b.angularVelocity.isZero())
+      return c.bad(b.linearVelocity.isZero() ? "angular_velocity" : "velocity",
+                   "a static body cannot move (make it \"kinematic\" to give it a velocity)");
+  }
+  return true;
+}
+
+}  // namespace
+
+bool validateScene(const SceneDesc& scene, SceneIssue& issue) {
+  issue = SceneIssue{};
+  Checker c{issue};
+  const SimSettings& s = scene.settings;
+  if (!c.positive("settings.dt", s.dt)) return false;
+  if (!c.finiteVec("settings.gravity", s.gravity)) return false;
+  if (s.iterations < 1) return c.bad("settings.iterations", "must be >= 1 (got " + std::to_string(s.iterations) + ")");
+  if (!c.isFiniteNum("settings.omega", s.omega)) return false;
+  if (!(s.omega >= 1.0f && s.omega < 2.0f)) return c.bad("settings.omega", "must be in [1, 2) (got " + formatNumber(s.omega) + ")");
+  if (!c.nonNegative("settings.beta", s.beta) || !c.nonNegative("settings.slop", s.slop)) return false;
+  if (s.beta > 1.0f) return c.bad("settings.beta", "must be in [0, 1] (got " + formatNumber(s.beta) + ")");
+  if (s.frames < 1) return c.bad("settings.frames", "must be >= 1 (got " + std::to_string(s.frames) + ")");
+
+  if (scene.materials.empty()) return c.bad("materials", "materials[0] (\"default\") must exist");
+  for (const MaterialDesc& m : scene.materials) {
+    const std::string f = "materials." + m.name + ".";
+    if (!c.nonNegative(f + "friction", m.friction) || !c.nonNegative(f + "restitution", m.restitution) ||
+        !c.positive(f + "density", m.density))
+      return false;
+    if (m.restitution > 1.0f) return c.bad(f + "restitution", "must be in [0, 1] (got " + formatNumber(m.restitution) + ")");
+  }
+  for (size_t i = 0; i < scene.bodies.size(); ++i) {
+    c.body = static_cast<int>(i);
+    if (!checkBody(c, scene, scene.bodies[i])) return false;
+  }
+  c.body = -1;
+  for (size_t i = 0; i < scene.water.size(); ++i) {
+    c.water = static_cast<int>(i);
+    const WaterDesc& w = scene.water[i];
+    if (!c.finiteVec("min", w.lo) || !c.finiteVec("max", w.hi)) return false;
+    if (!(w.lo.array() < w.hi.array()).all()) return c.bad("max", "must be greater than min in every component");
+    if (!c.positive("density", w.density) || !c.nonNegative("linear_drag", w.linearDrag) ||
+        !c.nonNegative("angular_drag", w.angularDrag))
+      return false;
+  }
+  return true;
+}
+
+}  // namespace haif

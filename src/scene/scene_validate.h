@@ -1,0 +1,32 @@
+// Invariants every SceneDesc must satisfy before a World is built from it, whether it came from
+// a file or was assembled in code. The loader checks most things with exact file positions while
+// reading; this is the final, format-independent net (and what code-built scenes should call).
+#pragma once
+
+#include "scene/scene_desc.h"
+
+#include <string>
+
+namespace haif {
+
+/// One broken invariant.
+struct SceneIssue {
+  int body = -1;        ///< index into SceneDesc::bodies, or -1 for scene-level issues
+  int water = -1;       ///< index into SceneDesc::water, or -1
+  std::string field;    ///< scene-file key path of the value, e.g. "mass", "shape.radius", "settings.dt"
+  std::string message;  ///< what is wrong, e.g. "must be > 0 (got -2)"
+
+  /// "bodies[3].mass: must be > 0 (got -2)" (uses the body's `where`).
+  std::string describe(const SceneDesc& scene) const;
+};
+
+/// Checks settings, materials, bodies and water volumes. Returns false and fills `issue` with the first problem.
+bool validateScene(const SceneDesc& scene, SceneIssue& issue);
+
+/// True for shapes only a static body may have (planes, triangle meshes).
+bool isStaticOnlyShape(ShapeType t);
+
+/// Empty when the points span a volume; else why not (fewer than 4, or all on one plane/line).
+std::string hullPointsProblem(const std::vector<Vec3>& points);
+
+}  // namespace haif

@@ -1,0 +1,205 @@
+// Bad scene input: each problem gives one line "FILE:LINE:COL: PLACE: what", pointing at the value.
+#include "scene_test_util.h"
+
+namespace haif::test {
+namespace {
+
+// "mem/bad.json:LINE:COL: " of the first occurrence of `needle` in `text` (counted here, ASCII only).
+std::string at(const std::string& text, const std::string& needle, size_t skip = 0) {
+  size_t pos = text.find(needle);
+  for (size_t i = 0; i < skip && pos != std::string::npos; ++i) pos = text.find(needle, pos + 1);
+  EXPECT_NE(pos, std::string::npos) << needle;
+  int line = 1, col = 1;
+  for (size_t i = 0; i < pos; ++i) {
+    if (text[i] == '\n') ++line, col = 1;
+    else ++col;
+  }
+  return "mem/bad.json:" + std::to_string(line) + ":" + std::to_string(col) + ": ";
+}
+
+// A scene whose only body has the given members (after "shape").
+std::string body(const std::string& members, const std::string& shape = R"({"type": "sphere"})") {
+  return "{\n  \"bodies\": [\n    {\"shape\": " + shape + (members.empty() ? "" : ", " + members) + "}\n  ]\n}\n";
+}
+
+#define EXPECT_ERROR(text, needle, place_and_message)                               \
+  do {                                                                             \
+    const std::string t_ = (text);                                                 \
+    const std::string e_ = parseError(t_);                                         \
+    EXPECT_EQ(e_.rfind(at(t_, needle), 0), 0u) << "error: " << e_;                 \
+    EXPECT_NE(e_.find(place_and_message), std::string::npos) << "error: " << e_;   \
+    EXPECT_EQ(e_.find('\n'), std::string::npos) << "one line: " << e_;            \
+  } while (0)
+
+TEST(SceneErrors, SyntaxErrorReportsLineAndColumn) {
+  const std::string text = "{\n  \"bodies\": [1,,2]\n}\n";
+  const std::string e = parseError(text);
+  EXPECT_EQ(e.rfind("mem/bad.json:2:16: syntax error: ", 0), 0u) << e;
+  EXPECT_NE(e.find("unexpected ','"), std::string::npos) << e;
+  EXPECT_EQ(e.find("json.exception"), std::string::npos) << e;
+
+  const std::string unterminated = parseError("{\n  \"name\": \"x\"\n");
+  EXPECT_NE(unterminated.find("mem/bad.json:3:1: syntax error: "), std::string::npos) << unterminated;
+}
+
+TEST(SceneErrors, MissingFile) {
+  SceneDesc s;
+  std::string error;
+  EXPECT_FALSE(loadSceneFile("/nonexistent/dir/x.json", s, error));
+  EXPECT_EQ(error, "/nonexistent/dir/x.json: cannot open scene file (No such file or directory)");
+}
+
+TEST(SceneErrors, TopLevelMustBeAnObject) {
+  EXPECT_EQ(parseError("[1, 2]"), "mem/bad.json:1:1: scene: a scene file must hold one JSON object {...} (got an array of 2)");
+}
+
+TEST(SceneErrors, UnknownKeysSuggestTheClosestKnownOne) {
+  const std::string top = "{\n  \"bodys\": []\n}";
+  EXPECT_EQ(parseError(top), "mem/bad.json:2:3: bodys: unknown key (did you mean 'bodies'?)");
+  EXPECT_ERROR(body(R"("positon": [0, 1, 0])"), "\"positon\"", "bodies[0].positon: unknown key (did you mean 'position'?)");
+  EXPECT_ERROR(body("", R"({"type": "box", "radius": 1})"), "\"radius\"",
+               "bodies[0].shape.radius: unknown key (known keys: type, half_extents, size)");
+  EXPECT_ERROR(R"({"settings": {"dt": 0.01, "itrations": 5}})", "\"itrations\"",
+               "settings.itrations: unknown key (did you mean 'iterations'?)");
+}
+
+TEST(SceneErrors, CommentKeysAreIgnored) {
+  EXPECT_EQ(parseOk(R"({"_comment": "hi", "bodies": [{"_note": 1, "shape": {"type": "sphere"}}]})").bodies.size(), 1u);
+}
+
+TEST(SceneErrors, DuplicateKey) {
+  const std::string text = body(R"("mass": 1, "mass": 2)");
+  EXPECT_ERROR(text, "\"mass\": 2", "duplicate key: 'mass' appears twice");
+}
+
+TEST(SceneErrors, UnknownShapeType) {
+  EXPECT_ERROR(body("", R"({"type": "cube"})"), "\"cube\"",
+               "bodies[0].shape.type: unknown shape type 'cube'; use sphere, box, capsule, hull, mesh or plane");
+  EXPECT_ERROR(body("", R"({"type": "shpere"})"), "\"shpere\"", "unknown shape type 'shpere' (did you mean 'sphere'?)");
+  EXPECT_ERROR(body("", R"({"radius": 1})"), "{\"radius\"", "bodies[0].shape: missing required key 'type'");
+}
+
+TEST(SceneErrors, MissingShape) {
+  const std::string text = "{\"bodies\": [\n  {\"position\": [0, 0, 0]}\n]}";
+  EXPECT_ERROR(text, "{\"position\"", "bodies[0]: missing required key 'shape'");
+}
+
+TEST(SceneErrors, WrongValueTypes) {
+  EXPECT_ERROR(body("", R"({"type": "sphere", "radius": "big"})"), "\"big\"",
+               "bodies[0].shape.radius: must be a number (got string \"big\")");
+  EXPECT_ERROR(body(R"("position": [0, 1])"), "[0, 1]", "bodies[0].position: must be an array of 3 numbers [x, y, z] (got an array of 2)");
+  EXPECT_ERROR(body(R"("position": [0, true, 1])"), "true", "bodies[0].position[1]: must be a number (got true)");
+  EXPECT_ERROR(R"({"settings": {"sleeping": "yes"}})", "\"yes\"", "settings.sleeping: must be true or false");
+  EXPECT_ERROR(R"({"settings": {"iterations": 2.5}})", "2.5", "settings.iterations: must be an integer (got 2.5)");
+  EXPECT_ERROR(R"({"bodies": {"a": 1}})", "{\"a\"", "bodies: must be an array [...] (got an object)");
+  EXPECT_ERROR(body(R"("type": "dynamc")"), "\"dynamc\"", "bodies[0].type: unknown body type 'dynamc' (did you mean 'dynamic'?)");
+}
+
+TEST(SceneErrors, NanInfinityAndOverflow) {
+  EXPECT_ERROR(body(R"("mass": "nan")"), "\"nan\"", "bodies[0].mass: must be a finite number (got string \"nan\"; NaN and infinity are not allowed)");
+  EXPECT_ERROR(body(R"("velocity": [0, "-Infinity", 0])"), "\"-Inf", "bodies[0].velocity[1]: must be a finite number");
+  EXPECT_ERROR(body(R"("position": [0, 1e999, 0])"), "1e999", "syntax error: number out of range");
+  EXPECT_ERROR(body(R"("position": [0, -1e39, 0])"), "-1e39", "bodies[0].position[1]: number out of range (got -1e+39");
+}
+
+TEST(SceneErrors, MassRules) {
+  const std::string text =
+      "{\n  \"bodies\": [\n    {\"shape\": {\"type\": \"sphere\"}},\n    {\"shape\": {\"type\": \"sphere\"}},\n"
+      "    {\"shape\": {\"type\": \"sphere\"}},\n    {\"shape\": {\"type\": \"box\"}, \"mass\": -2}\n  ]\n}\n";
+  EXPECT_EQ(parseError(text), at(text, "-2") + "bodies[3].mass: must be > 0 for a dynamic body (got -2)");
+  EXPECT_ERROR(body(R"("mass": 0)"), "0}", "bodies[0].mass: must be > 0 for a dynamic body (got 0)");
+  EXPECT_ERROR(body(R"("type": "static", "mass": 5)"), "5}", "bodies[0].mass: only dynamic bodies have a mass (this body is static)");
+}
+
+TEST(SceneErrors, NonPositiveSizes) {
+  EXPECT_ERROR(body("", R"({"type": "sphere", "radius": 0})"), "0}", "bodies[0].shape.radius: must be > 0 (got 0)");
+  EXPECT_ERROR(body("", R"({"type": "box", "half_extents": [1, -1, 1]})"), "-1", "bodies[0].shape.half_extents[1]: must be > 0 (got -1)");
+  EXPECT_ERROR(body("", R"({"type": "box", "size": -3})"), "-3", "bodies[0].shape.size: must be > 0 (got -3)");
+  EXPECT_ERROR(body("", R"({"type": "capsule", "half_height": -0.5})"), "-0.5", "bodies[0].shape.half_height: must be >= 0 (got -0.5)");
+}
+
+TEST(SceneErrors, SettingsRanges) {
+  EXPECT_ERROR(R"({"settings": {"dt": 0}})", "0}", "settings.dt: must be > 0 (got 0)");
+  EXPECT_ERROR(R"({"settings": {"dt": -0.01}})", "-0.01", "settings.dt: must be > 0 (got -0.01)");
+  EXPECT_ERROR(R"({"settings": {"iterations": 0}})", "0}", "settings.iterations: must be in [1, 100000] (got 0)");
+  EXPECT_ERROR(R"({"settings": {"omega": 2}})", "2}", "settings.omega: must be in [1, 2) (got 2)");
+  EXPECT_ERROR(R"({"settings": {"omega": 0.9}})", "0.9", "settings.omega: must be in [1, 2) (got 0.9)");
+  EXPECT_ERROR(R"({"settings": {"beta": 1.5}})", "1.5", "settings.beta: must be in [0, 1] (got 1.5)");
+  EXPECT_ERROR(R"({"settings": {"frames": -1}})", "-1", "settings.frames: must be in [1, 100000000] (got -1)");
+  EXPECT_ERROR(R"({"camera": {"eye": [0, 1, 0], "target": [0, 1, 0]}})", "[0, 1, 0]}", "camera.target: must differ from eye");
+  EXPECT_ERROR(R"({"camera": {"fov_deg": 180}})", "180", "camera.fov_deg: must be in (0, 180) degrees (got 180)");
+}
+
+TEST(SceneErrors, MaterialRules) {
+  EXPECT_ERROR(R"({"materials": {"ice": {"friction": -0.1}}})", "-0.1", "materials.ice.friction: must be >= 0 (got -0.1)");
+  EXPECT_ERROR(R"({"materials": {"ice": {"restitution": -1}}})", "-1", "materials.ice.restitution: must be in [0, 1] (got -1)");
+  EXPECT_ERROR(R"({"materials": {"ice": {"density": 0}}})", "0}", "materials.ice.density: must be > 0 (got 0)");
+  EXPECT_ERROR(R"({"materials": {"ice": {"frict": 1}}})", "\"frict\"", "materials.ice.frict: unknown key (did you mean 'friction'?)");
+  const std::string text = "{\"materials\": {\"steel\": {}},\n \"bodies\": [{\"shape\": {\"type\": \"box\"}, \"material\": \"stel\"}]}";
+  EXPECT_ERROR(text, "\"stel\"", "bodies[0].material: unknown material 'stel' (did you mean 'steel'?)");
+  EXPECT_ERROR(body(R"("material": "zzz")"), "\"zzz\"", "bodies[0].material: unknown material 'zzz' (defined: default)");
+}
+
+TEST(SceneErrors, StaticOnlyShapesOnMovingBodies) {
+  EXPECT_ERROR(body("", R"({"type": "plane"})"), "\"plane\"",
+               "bodies[0].shape.type: shape 'plane' is static-only; a dynamic body needs sphere, box, capsule or hull");
+  EXPECT_ERROR(body(R"("type": "kinematic")", R"({"type": "mesh", "vertices": [[0,0,0],[1,0,0],[0,0,1]], "indices": [0,1,2]})"),
+               "\"mesh\"", "shape 'mesh' is static-only; a kinematic body");
+  EXPECT_ERROR(body(R"("type": "static", "velocity": [1, 0, 0])"), "[1, 0, 0]",
+               "bodies[0].velocity: a static body cannot move (make it \"kinematic\"");
+}
+
+TEST(SceneErrors, HullAndMeshData) {
+  EXPECT_ERROR(body("", R"({"type": "hull", "points": [[0,0,0],[1,0,0],[0,1,0]]})"), "[[0,0,0]",
+               "bodies[0].shape.points: a hull needs at least 4 points (got 3)");
+  EXPECT_ERROR(body("", R"({"type": "hull", "points": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]]})"), "[[0,0,0]",
+               "bodies[0].shape.points: all hull points lie in one plane");
+  EXPECT_ERROR(body("", R"({"type": "hull"})"), "{\"type\": \"hull\"", "bodies[0].shape: a hull needs 'points'");
+  EXPECT_ERROR(body(R"("type": "static")", R"({"type": "mesh", "vertices": [[0,0,0],[1,0,0],[0,0,1]], "indices": [0,1,3]})"), "3]",
+               "bodies[0].shape.indices[2]: must be in [0, 2] (got 3)");
+  EXPECT_ERROR(body(R"("type": "static")", R"({"type": "mesh", "vertices": [[0,0,0],[1,0,0],[0,0,1]], "indices": [0,1]})"), "[0,1]",
+               "bodies[0].shape.indices: must hold 3 vertex indices per triangle (got 2 indices)");
+  EXPECT_ERROR(body(R"("orientation": [0, 0, 0, 0])"), "[0, 0, 0, 0]", "bodies[0].orientation: must not be the zero quaternion");
+  EXPECT_ERROR(body(R"("orientation": {"euler": [0, 0, 0]})"), "\"euler\"", "bodies[0].orientation.euler: unknown key (did you mean 'euler_deg'?)");
+}
+
+TEST(SceneErrors, MissingAssetNamesTheFieldAndTheFile) {
+  EXPECT_ERROR(body(R"("type": "static")", R"({"type": "mesh", "asset": "assets/nothere.obj"})"), "\"assets/nothere.obj\"",
+               "bodies[0].shape.asset: cannot open asset file 'mem/assets/nothere.obj' (No such file or directory)");
+}
+
+TEST(SceneErrors, GeneratorParameters) {
+  EXPECT_ERROR(R"({"generators": [{"type": "ground"}, {"type": "stacks", "count": 0}]})", "0}",
+               "generators[1].count: must be in [1, 1000000] (got 0)");
+  EXPECT_ERROR(R"({"generators": [{"type": "stacks"}]})", "{\"type\": \"stacks\"", "generators[0]: missing required key 'count'");
+  EXPECT_ERROR(R"({"generators": [{"type": "stacks", "count": -5}]})", "-5", "generators[0].count: must be in [1, 1000000] (got -5)");
+  EXPECT_ERROR(R"({"generators": [{"type": "stacks", "count": 10, "spacing": 0.5}]})", "0.5",
+               "generators[0].spacing: stacks would overlap: spacing 0.5 is less than the box width 1");
+  EXPECT_ERROR(R"({"generators": [{"type": "many_pyramids", "rows": 200, "cols": 200, "base": 10}]})", "10}",
+               "generators[0].base: would make 2200000 bodies; a scene holds at most 1000000");
+  EXPECT_ERROR(R"({"generators": [{"type": "pyramid"}]})", "\"pyramid\"",
+               "generators[0].type: unknown generator type 'pyramid' (did you mean 'pyramid_2d'?)");
+  EXPECT_ERROR(R"({"generators": [{"type": "random_pile", "count": 100, "min": [0, 0, 0], "max": [2, 2, 2]}]})", "100",
+               "generators[0].count: the region holds at most 8 bodies of size up to 0.4 (got 100)");
+  EXPECT_ERROR(R"({"generators": [{"type": "random_pile", "count": 1, "min": [0, 0, 0], "max": [2, -2, 2]}]})", "-2",
+               "generators[0].max[1]: must be greater than min (0)");
+  EXPECT_ERROR(R"({"generators": [{"type": "domino_run", "count": 5, "spacing": 0.1}]})", "0.1",
+               "generators[0].spacing: dominoes would overlap");
+  EXPECT_ERROR(R"({"generators": [{"type": "grid", "counts": [2, 1, 1], "spacing": 0.5, "shape": {"type": "sphere"}}]})", "0.5",
+               "generators[0].spacing: bodies would overlap: spacing along x is 0.5 but the shape is 1 wide");
+  EXPECT_ERROR(R"({"generators": [{"type": "grid", "counts": [1, 1, 1], "spacing": 1, "shape": {"type": "plane"}}]})", "\"plane\"",
+               "generators[0].shape.type: shape 'plane' is static-only");
+  EXPECT_ERROR(R"({"generators": [{"type": "wall", "rows": 2, "cols": 3, "bond": "runing"}]})", "\"runing\"",
+               "generators[0].bond: unknown bond 'runing' (did you mean 'running'?)");
+  EXPECT_ERROR(R"({"generators": [{"type": "stack", "count": 3, "mass": -1}]})", "-1",
+               "generators[0].mass: must be > 0 for a dynamic body (got -1)");
+}
+
+TEST(SceneErrors, FinalValidationPointsAtTheGeneratorThatMadeTheBody) {
+  // Every parameter is fine on its own, but 1e38 * 9 overflows a float position.
+  const std::string text = "{\"generators\": [\n  {\"type\": \"grid\", \"counts\": [10, 1, 1], \"spacing\": 1e38, \"shape\": {\"type\": \"sphere\"}}\n]}";
+  EXPECT_ERROR(text, "{\"type\": \"grid\"", "generators[0] #4.position: must be finite");
+}
+
+}  // namespace
+}  // namespace haif::test
