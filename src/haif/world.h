@@ -31,6 +31,7 @@ struct WorldSettings {
   float restitutionThreshold = 1.0f;///< m/s
   float contactMargin = 0.02f;      ///< speculative distance (m) beyond which points are not reported
   bool warmStart = true;
+  bool topDownOrder = true;         ///< solve the highest contacts of an island first
   bool sleeping = false;
   float timeToSleep = 0.5f;         ///< s an island must rest before it sleeps
   float sleepLinear = 0.05f;        ///< m/s
@@ -112,6 +113,7 @@ class World {
   template <class F> void forEachIsland(F&& f);
   double measureSolveError(int iterations);
   void detectSleep();
+  void orderContactsTopDown();
   void putIslandToSleep(const Island& isl);
   template <class F> void parallelFor(uint32_t n, uint32_t grain, F&& f);
 
@@ -131,6 +133,7 @@ class World {
   IslandBuilder islandBuilder_;
   IslandSet islands_;
   std::vector<int32_t> islandOfBody_;
+  std::vector<float> contactHeight_;  // solve-order key per contact
   std::vector<ContactConstraint> constraints_;
   std::vector<int> islandIterations_;
   std::vector<float> islandResidual_;
