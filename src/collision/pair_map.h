@@ -3,6 +3,7 @@
 // Grows by doubling only when more than half full: no allocation in a steady state.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 

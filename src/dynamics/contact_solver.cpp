@@ -48,14 +48,13 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
     // Velocity bias: close a speculative gap exactly, push out penetration beyond the slop
     // (Baumgarte), or bounce when approaching fast enough.
     const float vn = n.dot(vB - vA) + cp.rBxn.dot(wB) - cp.rAxn.dot(wA);
-    // The relax pass keeps only the speculative and restitution parts: the push-out velocity moves
-    // positions but is not carried into the next step as kinetic energy.
-    float target = mp.depth < 0.0f ? mp.depth * invDt : 0.0f;  // may approach by the gap, no faster
-    if (contact.restitution > 0.0f && vn < -p.restitutionThreshold)
-      target = std::max(target, -contact.restitution * vn);
-    cp.relaxBias = -target;
-    if (mp.depth > 0.0f) target = std::max(target, p.beta * invDt * std::max(0.0f, mp.depth - p.slop));
-    cp.bias = -target;
+    // Main sweeps: close a speculative gap exactly, push penetration beyond the slop out (Baumgarte).
+    // Relax sweeps (after positions moved): no push-out, so it does not become kinetic energy; a
+    // contact that pushed this step and was approached fast enough bounces, from where it now is.
+    const float speculative = mp.depth < 0.0f ? mp.depth * invDt : 0.0f;  // approach by the gap, no faster
+    cp.bias = mp.depth < 0.0f ? -speculative : -p.beta * invDt * std::max(0.0f, mp.depth - p.slop);
+    cp.relaxBias = -speculative;
+    cp.restitutionBias = contact.restitution > 0.0f && vn < -p.restitutionThreshold ? contact.restitution * vn : 0.0f;
 
     if (p.warmStart) {
       cp.normalImpulse = contact.normalImpulse[i];
@@ -105,11 +104,40 @@ float solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float o
     Vec3 va = bodies.v[c.a], wa = bodies.w[c.a], vb = bodies.v[c.b], wb = bodies.w[c.b];
     const float mA = c.invMassA, mB = c.invMassB;
 
-    // Normal rows first: friction bounds depend on them.
+    // Friction first, bounded by the normal impulses of the previous sweep.
+    for (int i = 0; i < c.count; ++i) {
+      ContactConstraint::Point& p = c.points[i];
+      // Both tangent rows together, clamped to the friction circle |λt| <= μ λn: clamping each axis
+      // alone (a box) lets friction reach √2 μ λn and pushes a sliding body sideways.
+      const float limit = c.friction * p.normalImpulse;
+      const Vec3 dv = vb - va;
+      const float vt1 = p.tangent1.dot(dv) + p.rBxt1.dot(wb) - p.rAxt1.dot(wa);
+      const float vt2 = p.tangent2.dot(dv) + p.rBxt2.dot(wb) - p.rAxt2.dot(wa);
+      const float old1 = p.tangentImpulse1, old2 = p.tangentImpulse2;
+      float n1 = old1 - omega * p.tangentMass1 * vt1;
+      float n2 = old2 - omega * p.tangentMass2 * vt2;
+      const float len2 = n1 * n1 + n2 * n2;
+      if (len2 > limit * limit) {
+        const float scale = len2 > 0.0f ? limit / std::sqrt(len2) : 0.0f;
+        n1 *= scale;
+        n2 *= scale;
+      }
+      p.tangentImpulse1 = n1;
+      p.tangentImpulse2 = n2;
+      const float a1 = n1 - old1, a2 = n2 - old2;
+      const Vec3 P = a1 * p.tangent1 + a2 * p.tangent2;
+      va -= mA * P;
+      wa -= a1 * p.iAt1 + a2 * p.iAt2;
+      vb += mB * P;
+      wb += a1 * p.iBt1 + a2 * p.iBt2;
+    }
+    // Normal rows last: non-penetration matters more than friction, so each sweep ends with the
+    // normal rows satisfied (friction last left tilting torques that rocked stacks apart).
     for (int i = 0; i < c.count; ++i) {
       ContactConstraint::Point& p = c.points[i];
       const float vn = p.normal.dot(vb - va) + p.rBxn.dot(wb) - p.rAxn.dot(wa);
-      const float dl = -omega * p.normalMass * (vn + (useBias ? p.bias : p.relaxBias));
+      const float b = useBias ? p.bias : (p.restitutionBias < 0.0f && p.normalImpulse > 0.0f ? p.restitutionBias : p.relaxBias);
+      const float dl = -omega * p.normalMass * (vn + b);
       const float old = p.normalImpulse;
       p.normalImpulse = std::max(0.0f, old + dl);
       const float applied = p.normalImpulse - old;
@@ -118,30 +146,6 @@ float solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float o
       vb += (mB * applied) * p.normal;
       wb += applied * p.iBn;
       if (p.normalMass > 0.0f) residual = std::max(residual, std::fabs(applied) / p.normalMass);
-    }
-    for (int i = 0; i < c.count; ++i) {
-      ContactConstraint::Point& p = c.points[i];
-      const float limit = c.friction * p.normalImpulse;
-      {
-        const float vt = p.tangent1.dot(vb - va) + p.rBxt1.dot(wb) - p.rAxt1.dot(wa);
-        const float old = p.tangentImpulse1;
-        p.tangentImpulse1 = std::clamp(old - omega * p.tangentMass1 * vt, -limit, limit);
-        const float applied = p.tangentImpulse1 - old;
-        va -= (mA * applied) * p.tangent1;
-        wa -= applied * p.iAt1;
-        vb += (mB * applied) * p.tangent1;
-        wb += applied * p.iBt1;
-      }
-      {
-        const float vt = p.tangent2.dot(vb - va) + p.rBxt2.dot(wb) - p.rAxt2.dot(wa);
-        const float old = p.tangentImpulse2;
-        p.tangentImpulse2 = std::clamp(old - omega * p.tangentMass2 * vt, -limit, limit);
-        const float applied = p.tangentImpulse2 - old;
-        va -= (mA * applied) * p.tangent2;
-        wa -= applied * p.iAt2;
-        vb += (mB * applied) * p.tangent2;
-        wb += applied * p.iBt2;
-      }
     }
     if (c.dynA) {
       bodies.v[c.a] = va;

@@ -29,6 +29,7 @@ struct ContactConstraint {
     float normalMass, tangentMass1, tangentMass2;  // 1 / (J M^-1 J^T) per row
     float bias;                                    // b of the normal row (velocity, m/s)
     float relaxBias;                               // b without position correction (relax pass)
+    float restitutionBias;                         // b of a bounce (e times the approach speed), or 0
     float normalImpulse, tangentImpulse1, tangentImpulse2;
   };
   uint32_t a, b;               // body ids

@@ -11,8 +11,14 @@ AdaptiveController::AdaptiveController(const CostModel& model, const AdaptiveSet
   iMax = s.iMax;
 }
 
+int AdaptiveController::threadsFor(const ControlContext& ctx) const {
+  // Model mode must decide the same for any thread count (DESIGN.md §2), so it plans for the
+  // cost model's thread count, not the run's.
+  return useClock_ ? ctx.threads : model_.modelThreads;
+}
+
 double AdaptiveController::iterationMs(const ControlContext& ctx) const {
-  const double crit = CostModel::criticalRows(ctx.totalRows, ctx.largestRows, ctx.threads, model_.parallelEfficiency);
+  const double crit = CostModel::criticalRows(ctx.totalRows, ctx.largestRows, threadsFor(ctx), model_.parallelEfficiency);
   return model_.msPerRowIteration * crit;
 }
 
@@ -21,7 +27,7 @@ int AdaptiveController::choose(const ControlContext& ctx) {
     previous_ = iMax;
     return iMax;  // no budget, or nothing to solve: precision costs nothing
   }
-  const double crit = CostModel::criticalRows(ctx.totalRows, ctx.largestRows, ctx.threads, model_.parallelEfficiency);
+  const double crit = CostModel::criticalRows(ctx.totalRows, ctx.largestRows, threadsFor(ctx), model_.parallelEfficiency);
   const double elapsed = useClock_ ? ctx.elapsedMs : model_.collisionMs(ctx.bodies, ctx.contactPoints);
   const double post = useClock_ && postMs_ >= 0.0 ? postMs_ : model_.msPerBody * 0.5 * ctx.bodies;
   const double remaining = ctx.budgetMs - elapsed - post - model_.msPerRowPrepare * crit;
@@ -38,7 +44,7 @@ void AdaptiveController::observe(const ControlContext& ctx, const SolveObservati
   if (!useClock_) return;  // model mode never learns from the clock: it must stay deterministic
   const double lr = s_.learnRate;
   postMs_ = postMs_ < 0.0 ? obs.integrateMs : (1.0 - lr) * postMs_ + lr * obs.integrateMs;
-  const double crit = CostModel::criticalRows(ctx.totalRows, ctx.largestRows, ctx.threads, model_.parallelEfficiency);
+  const double crit = CostModel::criticalRows(ctx.totalRows, ctx.largestRows, threadsFor(ctx), model_.parallelEfficiency);
   if (crit <= 0.0 || obs.solveMs <= 0.0) return;
   // The solve did (prepare + iterations) over the critical path. Keep the prepare/iteration ratio of
   // the model and fit the scale to the measurement.

@@ -31,6 +31,8 @@ class AdaptiveController final : public IterationController {
   const CostModel& model() const { return model_; }
   /// Time (ms) the controller expects an iteration over the critical path to take.
   double iterationMs(const ControlContext& ctx) const;
+  /// Threads the critical path is planned for: the run's (adaptive) or the model's (model mode).
+  int threadsFor(const ControlContext& ctx) const;
 
  private:
   CostModel model_;

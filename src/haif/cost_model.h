@@ -13,6 +13,7 @@ struct CostModel {
   double msPerContactPoint = 2.5e-4;  ///< collision detection per contact point (broad + narrow)
   double msPerBody = 3.0e-4;          ///< per awake body: forces, bounds, integration
   double parallelEfficiency = 0.85;   ///< speed-up per extra thread relative to ideal
+  int modelThreads = 1;               ///< threads model mode plans for (fixed, so decisions never depend on --threads)
 
   /// Modelled time of collision detection for a state.
   double collisionMs(unsigned bodies, unsigned contactPoints) const {

@@ -146,7 +146,7 @@ class World {
   std::unique_ptr<tbb::task_arena> arena_;
   int solveErrorEvery_ = 0;
   double measurementMs_ = 0.0;  // time of this step's reference solve, excluded from its timings
-  std::vector<Vec3> saveV_, saveW_, refV_, refW_;
+  std::vector<Vec3> saveV_, saveW_, startV_, startW_, refV_, refW_;
 
   StepStats stats_;
   uint64_t stepCount_ = 0;

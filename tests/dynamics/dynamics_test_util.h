@@ -1,0 +1,64 @@
+// Small scene builders shared by the dynamics tests.
+#pragma once
+
+#include "haif/world.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace haif::test {
+
+/// The reference ground of DESIGN.md §6: static box half (500, 1, 500) centred at y = -1 (top at y = 0).
+inline uint32_t addGround(World& w, float friction = 0.6f, float restitution = 0.0f) {
+  BodyDef d;
+  d.kind = BodyKind::Static;
+  d.shape = Shape::box(Vec3(500.0f, 1.0f, 500.0f));
+  d.xf.p = Vec3(0.0f, -1.0f, 0.0f);
+  d.friction = friction;
+  d.restitution = restitution;
+  return w.addBody(d);
+}
+
+inline uint32_t addBox(World& w, const Vec3& p, const Vec3& half = Vec3::Constant(0.5f), float mass = 1.0f,
+                       const Quat& q = Quat::Identity()) {
+  BodyDef d;
+  d.shape = Shape::box(half);
+  d.xf.p = p;
+  d.xf.q = q;
+  d.mass = mass;
+  return w.addBody(d);
+}
+
+inline uint32_t addSphere(World& w, const Vec3& p, float r = 0.5f, float mass = 1.0f) {
+  BodyDef d;
+  d.shape = Shape::sphere(r);
+  d.xf.p = p;
+  d.mass = mass;
+  return w.addBody(d);
+}
+
+/// Deepest penetration (m) over the current contact points (speculative points have depth < 0).
+inline float maxContactDepth(const World& w) {
+  float deepest = 0.0f;
+  for (const Contact& c : w.contacts())
+    for (int i = 0; i < c.manifold.count; ++i) deepest = std::max(deepest, c.manifold.points[i].depth);
+  return deepest;
+}
+
+/// World angular momentum about the centre of mass: L = R I_local R^T w.
+inline Eigen::Vector3d angularMomentum(const World& w, uint32_t i) {
+  const BodyStore& b = w.bodies();
+  const Eigen::Matrix3d R = b.xf[i].q.toRotationMatrix().cast<double>();
+  return R * b.inertiaLocal[i].cast<double>() * R.transpose() * b.w[i].cast<double>();
+}
+
+inline Eigen::Vector3d linearMomentum(const World& w) {
+  Eigen::Vector3d p = Eigen::Vector3d::Zero();
+  const BodyStore& b = w.bodies();
+  for (uint32_t i = 0; i < w.bodyCount(); ++i)
+    if (b.isDynamic(i)) p += double(b.mass[i]) * b.v[i].cast<double>();
+  return p;
+}
+
+}  // namespace haif::test

@@ -1,0 +1,101 @@
+// Free flight in zero gravity: nothing acts on the bodies, so momentum (and angular momentum) must
+// be conserved; contacts apply equal and opposite impulses, so they conserve them too.
+#include "dynamics_test_util.h"
+
+namespace haif::test {
+namespace {
+
+WorldSettings zeroG() {
+  WorldSettings s;
+  s.gravity = Vec3::Zero();
+  s.iterations = 10;
+  return s;
+}
+
+double rel(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return (a - b).norm() / std::max(1e-12, b.norm()); }
+
+TEST(Conservation, LinearMomentumInFreeFlight) {
+  World w(zeroG());
+  BodyDef d;
+  d.shape = Shape::box(Vec3(0.3f, 0.6f, 0.2f));
+  d.mass = 2.5f;
+  d.xf.p = Vec3(0, 0, 0);
+  d.linearVelocity = Vec3(1.5f, -0.7f, 0.3f);
+  d.angularVelocity = Vec3(0.4f, 2.0f, -1.0f);
+  w.addBody(d);
+  d.shape = Shape::sphere(0.4f);
+  d.mass = 0.8f;
+  d.xf.p = Vec3(-20, 5, 3);
+  d.linearVelocity = Vec3(-2.0f, 0.1f, 0.9f);
+  w.addBody(d);
+  const Eigen::Vector3d p0 = linearMomentum(w);
+  for (int s = 0; s < 600; ++s) w.step();
+  EXPECT_LT(rel(linearMomentum(w), p0), 1e-6) << "momentum " << linearMomentum(w).transpose() << " vs " << p0.transpose();
+  // Positions follow x = x0 + v t.
+  EXPECT_NEAR(w.bodies().xf[0].p.x(), 1.5f * 10.0f, 1e-3f);
+  EXPECT_NEAR(w.bodies().xf[1].p.z(), 3.0f + 0.9f * 10.0f, 1e-3f);
+}
+
+TEST(Conservation, AngularMomentumOfSpinningBox) {
+  World w(zeroG());
+  BodyDef d;
+  d.shape = Shape::box(Vec3(0.2f, 0.5f, 1.0f));  // three distinct principal moments
+  d.mass = 3.0f;
+  d.xf.q = Quat(Eigen::AngleAxisf(0.3f, Vec3(1, 2, 3).normalized()));
+  d.angularVelocity = Vec3(2.0f, 1.0f, 3.0f);  // not along a principal axis: the body tumbles
+  const uint32_t b = w.addBody(d);
+  const Eigen::Vector3d L0 = angularMomentum(w, b);
+  double worst = 0.0;
+  Vec3 w0 = w.bodies().w[b];
+  for (int s = 0; s < 600; ++s) {
+    w.step();
+    worst = std::max(worst, rel(angularMomentum(w, b), L0));
+  }
+  EXPECT_LT(worst, 1e-4) << "|L| drift; L0 = " << L0.transpose() << ", L = " << angularMomentum(w, b).transpose();
+  // The tumble is real: the angular velocity changed direction (else the test would be trivial).
+  EXPECT_GT((w.bodies().w[b] - w0).norm(), 0.1f);
+  // And the body did not translate.
+  EXPECT_LT(w.bodies().xf[b].p.norm(), 1e-6f);
+}
+
+// Disabled: known defect, see the issue 2 note. The relax sweeps apply impulses after positions moved,
+// with lever arms from before, so total angular momentum drifts by ~1% in a collision.
+TEST(Conservation, DISABLED_MomentumThroughAGlancingCollision) {
+  World w(zeroG());
+  BodyDef d;
+  d.shape = Shape::sphere(0.5f);
+  d.mass = 1.0f;
+  d.friction = 0.5f;
+  d.restitution = 0.3f;
+  d.xf.p = Vec3(-3.0f, 0.3f, 0.0f);
+  d.linearVelocity = Vec3(4.0f, 0.0f, 0.0f);
+  d.angularVelocity = Vec3(0.0f, 0.0f, 5.0f);
+  const uint32_t a = w.addBody(d);
+  d.shape = Shape::box(Vec3(0.4f, 0.6f, 0.5f));
+  d.mass = 2.0f;
+  d.xf.p = Vec3(0.0f, 0.0f, 0.1f);
+  d.linearVelocity = Vec3(-1.0f, 0.0f, 0.0f);
+  d.angularVelocity = Vec3::Zero();
+  const uint32_t b = w.addBody(d);
+  auto totalL = [&] {
+    Eigen::Vector3d L = Eigen::Vector3d::Zero();
+    for (uint32_t i : {a, b})
+      L += w.bodies().xf[i].p.cast<double>().cross(double(w.bodies().mass[i]) * w.bodies().v[i].cast<double>()) +
+           angularMomentum(w, i);
+    return L;
+  };
+  const Eigen::Vector3d p0 = linearMomentum(w), L0 = totalL();
+  const Vec3 va0 = w.bodies().v[a];
+  bool touched = false;
+  for (int s = 0; s < 120; ++s) {
+    w.step();
+    touched = touched || w.lastStats().contactPoints > 0;
+  }
+  ASSERT_TRUE(touched) << "the bodies never met";
+  EXPECT_GT((w.bodies().v[a] - va0).norm(), 1.0f) << "the collision changed nothing";
+  EXPECT_LT(rel(linearMomentum(w), p0), 1e-5) << linearMomentum(w).transpose() << " vs " << p0.transpose();
+  EXPECT_LT(rel(totalL(), L0), 1e-4) << totalL().transpose() << " vs " << L0.transpose();
+}
+
+}  // namespace
+}  // namespace haif::test

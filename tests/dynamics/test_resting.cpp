@@ -1,0 +1,73 @@
+// Resting contact: a box on the ground and a 10-box stack must stay put (no drift, no sinking).
+#include "dynamics_test_util.h"
+
+#include <cstdio>
+
+namespace haif::test {
+namespace {
+
+WorldSettings restingSettings() {
+  WorldSettings s;
+  s.dt = 1.0f / 60.0f;
+  s.iterations = 10;
+  return s;
+}
+
+TEST(Resting, BoxOnGroundDoesNotDriftOrSink) {
+  World w(restingSettings());
+  addGround(w);
+  const uint32_t box = addBox(w, Vec3(0.0f, 0.5f, 0.0f));
+  const Vec3 start = w.bodies().xf[box].p;
+  float deepest = 0.0f, farthest = 0.0f;
+  for (int s = 0; s < 600; ++s) {
+    w.step();
+    deepest = std::max(deepest, maxContactDepth(w));
+    farthest = std::max(farthest, (w.bodies().xf[box].p - start).norm());
+  }
+  const float slop = w.settings().slop;
+  EXPECT_LT(farthest, 1e-3f) << "box drifted " << farthest << " m over 10 s";
+  EXPECT_LT(deepest, slop + 1e-3f) << "penetration " << deepest << " m (slop " << slop << ")";
+  // It must still be touching: a box floating above the ground would also "not penetrate".
+  EXPECT_GT(w.lastStats().contactPoints, 0u);
+  EXPECT_NEAR(w.bodies().xf[box].p.y(), 0.5f, slop + 1e-3f);
+  // Orientation unchanged too (no slow tipping).
+  EXPECT_GT(std::abs(w.bodies().xf[box].q.w()), 1.0f - 1e-6f);
+}
+
+// Disabled: known defect, see the issue 2 note. At 10 iterations a 10-box stack sways and walks
+// (the top box moves tens of cm in 10 s); 5-box stacks stand. Root cause not yet found.
+TEST(Resting, DISABLED_TenBoxStackStands) {
+  World w(restingSettings());
+  addGround(w);
+  const int n = 10;
+  std::vector<uint32_t> ids;
+  std::vector<Vec3> start;
+  for (int h = 0; h < n; ++h) {
+    ids.push_back(addBox(w, Vec3(0.0f, 0.5f + 1.01f * float(h), 0.0f)));
+    start.push_back(w.bodies().xf[ids.back()].p);
+  }
+  float maxHorizontal = 0.0f, deepest = 0.0f;
+  for (int s = 0; s < 600; ++s) {
+    w.step();
+    if (s >= 60) deepest = std::max(deepest, maxContactDepth(w));  // after the gaps have closed
+    for (int h = 0; h < n; ++h) {
+      const Vec3 d = w.bodies().xf[ids[h]].p - start[h];
+      maxHorizontal = std::max(maxHorizontal, std::hypot(d.x(), d.z()));
+    }
+  }
+  const Vec3 top = w.bodies().xf[ids.back()].p;
+  const Vec3 topMove = top - start.back();
+  char msg[160];
+  std::snprintf(msg, sizeof msg, "top box moved (%.4f, %.4f, %.4f) m; max horizontal over all boxes %.4f m",
+                topMove.x(), topMove.y(), topMove.z(), maxHorizontal);
+  EXPECT_LT(maxHorizontal, 0.03f) << msg;
+  for (int h = 0; h < n; ++h) {
+    // Resting height: h boxes below, each 1 m tall; the 1 cm gaps close, a few mm of slop allowed.
+    const float y = w.bodies().xf[ids[h]].p.y();
+    EXPECT_NEAR(y, 0.5f + float(h), 0.03f) << "box " << h << "; " << msg;
+  }
+  EXPECT_LT(deepest, 0.02f) << "stack penetration " << deepest << " m";
+}
+
+}  // namespace
+}  // namespace haif::test

@@ -1,0 +1,138 @@
+// Island formation: connected components of awake dynamic bodies; statics never join or merge islands.
+#include "haif/world.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+
+namespace haif {
+namespace {
+
+uint32_t addGround(World& w) {
+  BodyDef d;
+  d.kind = BodyKind::Static;
+  d.shape = Shape::box(Vec3(500.0f, 1.0f, 500.0f));
+  d.xf.p = Vec3(0.0f, -1.0f, 0.0f);
+  return w.addBody(d);
+}
+
+uint32_t addBox(World& w, const Vec3& p) {
+  BodyDef d;
+  d.shape = Shape::box(Vec3::Constant(0.5f));
+  d.xf.p = p;
+  d.mass = 1.0f;
+  return w.addBody(d);
+}
+
+std::vector<uint32_t> addStack(World& w, float x, float z, int n) {
+  std::vector<uint32_t> ids;
+  for (int h = 0; h < n; ++h) ids.push_back(addBox(w, Vec3(x, 0.5f + 1.005f * float(h), z)));
+  return ids;
+}
+
+// Every awake dynamic body is in exactly one island, islandOf agrees, and islands are largest first.
+void checkPartition(const World& w) {
+  const IslandSet& is = w.islands();
+  std::map<uint32_t, int> seen;
+  for (uint32_t k = 0; k < is.islands.size(); ++k) {
+    const Island& isl = is.islands[k];
+    for (uint32_t j = 0; j < isl.bodyCount; ++j) {
+      const uint32_t b = is.bodies[isl.firstBody + j];
+      EXPECT_EQ(seen.count(b), 0u) << "body " << b << " in two islands";
+      seen[b] = int(k);
+      EXPECT_EQ(w.islandOf(b), int32_t(k));
+    }
+    if (k > 0) {
+      EXPECT_GE(is.islands[k - 1].rows, isl.rows) << "islands not ordered largest first";
+    }
+  }
+  for (uint32_t i = 0; i < w.bodyCount(); ++i) {
+    const bool awakeDynamic = w.bodies().isDynamic(i) && !w.bodies().asleep[i];
+    EXPECT_EQ(seen.count(i), awakeDynamic ? 1u : 0u) << "body " << i;
+    if (!awakeDynamic) {
+      EXPECT_EQ(w.islandOf(i), -1) << "static/sleeping body " << i << " in an island";
+    }
+  }
+  // Contacts of an island touch only that island's bodies (or statics).
+  for (uint32_t k = 0; k < is.islands.size(); ++k) {
+    const Island& isl = is.islands[k];
+    for (uint32_t j = 0; j < isl.contactCount; ++j) {
+      const Contact& c = w.contacts()[is.contacts[isl.firstContact + j]];
+      for (uint32_t b : {c.a, c.b}) {
+        if (w.bodies().isDynamic(b)) {
+          EXPECT_EQ(w.islandOf(b), int32_t(k));
+        }
+      }
+    }
+  }
+}
+
+TEST(Islands, TwoStacksOnSharedGroundAreTwoIslands) {
+  World w;
+  const uint32_t ground = addGround(w);
+  const auto a = addStack(w, 0.0f, 0.0f, 4);
+  const auto b = addStack(w, 5.0f, 0.0f, 4);
+  for (int s = 0; s < 3; ++s) w.step();
+  ASSERT_EQ(w.islands().islands.size(), 2u) << "the static ground must not merge the stacks";
+  EXPECT_EQ(w.islandOf(ground), -1);
+  for (uint32_t i : a) EXPECT_EQ(w.islandOf(i), w.islandOf(a[0]));
+  for (uint32_t i : b) EXPECT_EQ(w.islandOf(i), w.islandOf(b[0]));
+  EXPECT_NE(w.islandOf(a[0]), w.islandOf(b[0]));
+  EXPECT_EQ(w.lastStats().islands, 2u);
+  EXPECT_EQ(w.lastStats().largestIsland, 4u);
+  checkPartition(w);
+}
+
+TEST(Islands, ChainOfTouchingBoxesIsOneIsland) {
+  World w;
+  addGround(w);
+  std::vector<uint32_t> chain;
+  for (int i = 0; i < 8; ++i) chain.push_back(addBox(w, Vec3(1.0f * float(i), 0.5f, 0.0f)));  // faces touch
+  for (int s = 0; s < 3; ++s) w.step();
+  ASSERT_EQ(w.islands().islands.size(), 1u);
+  EXPECT_EQ(w.islands().islands[0].bodyCount, 8u);
+  checkPartition(w);
+}
+
+TEST(Islands, LargestFirstAndLoneBodiesCounted) {
+  World w;
+  addGround(w);
+  const auto small = addStack(w, 0.0f, 0.0f, 2);
+  const auto big = addStack(w, 4.0f, 0.0f, 6);
+  const auto mid = addStack(w, 8.0f, 0.0f, 3);
+  const uint32_t flying = addBox(w, Vec3(20.0f, 30.0f, 0.0f));  // touches nothing
+  w.step();
+  const IslandSet& is = w.islands();
+  ASSERT_EQ(is.islands.size(), 4u);
+  EXPECT_EQ(w.islandOf(big[0]), 0);
+  EXPECT_EQ(w.islandOf(mid[0]), 1);
+  EXPECT_EQ(w.islandOf(small[0]), 2);
+  EXPECT_EQ(w.islandOf(flying), 3);
+  EXPECT_EQ(is.islands[3].rows, 0u);
+  EXPECT_EQ(is.largestBodies, 6u);
+  EXPECT_EQ(is.largestRows, is.islands[0].rows);
+  uint32_t total = 0;
+  for (const Island& isl : is.islands) total += isl.rows;
+  EXPECT_EQ(is.totalRows, total);
+  checkPartition(w);
+}
+
+TEST(Islands, BoxBridgingTwoStacksMergesThem) {
+  // A dynamic plank lying across two stacks joins them into one island (dynamic bodies do merge).
+  World w;
+  addGround(w);
+  addStack(w, 0.0f, 0.0f, 2);
+  addStack(w, 3.0f, 0.0f, 2);
+  BodyDef plank;
+  plank.shape = Shape::box(Vec3(2.0f, 0.25f, 0.5f));
+  plank.xf.p = Vec3(1.5f, 2.0f + 0.01f + 0.25f, 0.0f);
+  plank.mass = 1.0f;
+  w.addBody(plank);
+  for (int s = 0; s < 5; ++s) w.step();
+  EXPECT_EQ(w.islands().islands.size(), 1u);
+  checkPartition(w);
+}
+
+}  // namespace
+}  // namespace haif
