@@ -185,12 +185,11 @@ int commandRun(int argc, char** argv) {
   }
 #endif
 
-  const StepStats* last = stats.empty() ? nullptr : &stats.back();
+  std::vector<double> stepMs;
+  for (const StepStats& s : stats) stepMs.push_back(s.totalMs);
   std::printf("%s: %zu steps, %u bodies, %d threads, mode %s: median %.3f ms/step, state_hash %016llx%s\n",
-              sim.scene.name.c_str(), stats.size(), world.bodyCount(), threads, sim.mode.c_str(),
-              quantile([&] { std::vector<double> v; for (auto& s : stats) v.push_back(s.totalMs); return v; }(), 0.5),
+              sim.scene.name.c_str(), stats.size(), world.bodyCount(), threads, sim.mode.c_str(), quantile(stepMs, 0.5),
               (unsigned long long)info.stateHash, finite ? "" : " (NaN detected: run stopped)");
-  (void)last;
   std::printf("wrote %s/stats.csv, %s/summary.json%s\n", outDir.c_str(), outDir.c_str(),
               render ? ", frames/, charts/" : "");
   return finite ? 0 : 3;
