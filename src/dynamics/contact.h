@@ -13,8 +13,10 @@ struct Contact {
   float friction = 0.6f;
   float restitution = 0.0f;
   Manifold manifold;
-  float normalImpulse[kMaxManifoldPoints] = {};  ///< accumulated along the normal (N s)
-  Vec3 frictionImpulse[kMaxManifoldPoints] = {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};  ///< accumulated tangential impulse, world (N s)
+  float normalImpulse[kMaxManifoldPoints] = {};  ///< accumulated along each point's normal (N s)
+  Vec3 frictionImpulse = Vec3::Zero();  ///< accumulated tangential impulse at the manifold centre, world (N s)
+  float twistImpulse = 0.0f;            ///< accumulated friction impulse about frictionNormal (N m s)
+  Vec3 frictionNormal = Vec3::Zero();   ///< the axis twistImpulse was accumulated about
   bool touching() const { return manifold.count > 0; }
 };
 

@@ -19,64 +19,106 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   const Mat3 iB = cc.dynB ? bodies.invInertiaWorld[b] : Mat3::Zero();
   cc.friction = contact.friction;
   cc.count = contact.manifold.count;
+  const float mSum = cc.invMassA + cc.invMassB;
 
   const Vec3 pA = bodies.xf[a].p, pB = bodies.xf[b].p;
   const Vec3 vA = bodies.v[a], wA = bodies.w[a], vB = bodies.v[b], wB = bodies.w[b];
   const float invDt = 1.0f / p.dt;
 
+  Vec3 centre = Vec3::Zero(), normalSum = Vec3::Zero();
   for (int i = 0; i < cc.count; ++i) {
     const ContactPoint& mp = contact.manifold.points[i];
     ContactConstraint::Point& cp = cc.points[i];
-    // Each point carries its own normal (mesh contacts may differ per point).
     cp.normal = mp.normal;
-    orthonormalBasis(cp.normal, cp.tangent1, cp.tangent2);
-    const Vec3 n = cp.normal, t1 = cp.tangent1, t2 = cp.tangent2;
+    const Vec3 n = cp.normal;
     const Vec3 rA = mp.position - pA;
     const Vec3 rB = mp.position - pB;
-    auto row = [&](const Vec3& d, Vec3& rAx, Vec3& rBx, Vec3& iAx, Vec3& iBx) {
-      rAx = rA.cross(d);
-      rBx = rB.cross(d);
-      iAx = iA * rAx;
-      iBx = iB * rBx;
-      const float k = cc.invMassA + cc.invMassB + rAx.dot(iAx) + rBx.dot(iBx);
-      return k > 0.0f ? 1.0f / k : 0.0f;
-    };
-    cp.normalMass = row(n, cp.rAxn, cp.rBxn, cp.iAn, cp.iBn);
-    cp.tangentMass1 = row(t1, cp.rAxt1, cp.rBxt1, cp.iAt1, cp.iBt1);
-    cp.tangentMass2 = row(t2, cp.rAxt2, cp.rBxt2, cp.iAt2, cp.iBt2);
+    cp.rAxn = rA.cross(n);
+    cp.rBxn = rB.cross(n);
+    cp.iAn = iA * cp.rAxn;
+    cp.iBn = iB * cp.rBxn;
+    const float k = mSum + cp.rAxn.dot(cp.iAn) + cp.rBxn.dot(cp.iBn);
+    cp.normalMass = k > 0.0f ? 1.0f / k : 0.0f;
 
-    // Velocity bias: close a speculative gap exactly, push out penetration beyond the slop
-    // (Baumgarte), or bounce when approaching fast enough.
+    // Main sweeps: close a speculative gap exactly, push penetration beyond the slop out
+    // (Baumgarte, no faster than maxPushVelocity). Relax sweeps (after positions moved): no
+    // push-out, so it does not become kinetic energy; a contact that pushed this step and was
+    // approached fast enough bounces, from where it now is.
     const float vn = n.dot(vB - vA) + cp.rBxn.dot(wB) - cp.rAxn.dot(wA);
-    // Main sweeps: close a speculative gap exactly, push penetration beyond the slop out (Baumgarte).
-    // Relax sweeps (after positions moved): no push-out, so it does not become kinetic energy; a
-    // contact that pushed this step and was approached fast enough bounces, from where it now is.
     const float speculative = mp.depth < 0.0f ? mp.depth * invDt : 0.0f;  // approach by the gap, no faster
-    cp.bias = mp.depth < 0.0f ? -speculative : -p.beta * invDt * std::max(0.0f, mp.depth - p.slop);
-    cp.relaxBias = -speculative;
+    const float push = std::min(p.beta * invDt * std::max(0.0f, mp.depth - p.slop), p.maxPushVelocity);
+    cp.bias = mp.depth < 0.0f ? -speculative : -push;
     cp.restitutionBias = contact.restitution > 0.0f && vn < -p.restitutionThreshold ? contact.restitution * vn : 0.0f;
-
-    if (p.warmStart) {
-      cp.normalImpulse = contact.normalImpulse[i];
-      cp.tangentImpulse1 = contact.frictionImpulse[i].dot(t1);
-      cp.tangentImpulse2 = contact.frictionImpulse[i].dot(t2);
-    } else {
-      cp.normalImpulse = cp.tangentImpulse1 = cp.tangentImpulse2 = 0.0f;
+    cp.relaxBias = -speculative;
+    cp.normalImpulse = p.warmStart ? contact.normalImpulse[i] : 0.0f;
+    centre += mp.position;
+    normalSum += n;
+  }
+  for (int i = 0; i < cc.count; ++i) {
+    const ContactConstraint::Point& pi = cc.points[i];
+    for (int j = 0; j < cc.count; ++j) {
+      const ContactConstraint::Point& pj = cc.points[j];
+      cc.normalCoupling[i][j] = mSum * pi.normal.dot(pj.normal) + pi.rAxn.dot(pj.iAn) + pi.rBxn.dot(pj.iBn);
     }
+  }
+
+  // Friction at the centre of the points, about the mean normal.
+  if (cc.count == 0) return;
+  centre /= float(cc.count);
+  const Vec3 n = normalSum.squaredNorm() > 1e-12f ? Vec3(normalSum.normalized()) : cc.points[0].normal;
+  cc.twistAxis = n;
+  orthonormalBasis(n, cc.tangent1, cc.tangent2);
+  const Vec3 rA = centre - pA, rB = centre - pB;
+  cc.rAxt1 = rA.cross(cc.tangent1);
+  cc.rBxt1 = rB.cross(cc.tangent1);
+  cc.rAxt2 = rA.cross(cc.tangent2);
+  cc.rBxt2 = rB.cross(cc.tangent2);
+  cc.iAt1 = iA * cc.rAxt1;
+  cc.iBt1 = iB * cc.rBxt1;
+  cc.iAt2 = iA * cc.rAxt2;
+  cc.iBt2 = iB * cc.rBxt2;
+  // The two tangent rows share lever arms, so they couple: solve them as a 2x2 block.
+  const float k11 = mSum + cc.rAxt1.dot(cc.iAt1) + cc.rBxt1.dot(cc.iBt1);
+  const float k22 = mSum + cc.rAxt2.dot(cc.iAt2) + cc.rBxt2.dot(cc.iBt2);
+  const float k12 = cc.rAxt1.dot(cc.iAt2) + cc.rBxt1.dot(cc.iBt2);
+  const float det = k11 * k22 - k12 * k12;
+  if (det > 1e-12f * std::max(1.0f, k11 * k22)) {
+    const float inv = 1.0f / det;
+    cc.tangentMass[0][0] = k22 * inv;
+    cc.tangentMass[1][1] = k11 * inv;
+    cc.tangentMass[0][1] = cc.tangentMass[1][0] = -k12 * inv;
+  } else {
+    cc.tangentMass[0][0] = cc.tangentMass[1][1] = cc.tangentMass[0][1] = cc.tangentMass[1][0] = 0.0f;
+  }
+  cc.iAtw = iA * n;
+  cc.iBtw = iB * n;
+  const float kt = n.dot(cc.iAtw) + n.dot(cc.iBtw);
+  cc.twistMass = kt > 0.0f ? 1.0f / kt : 0.0f;
+  // Twist friction of a contact patch: μ·N times the mean distance of the points from the centre.
+  float radius = 0.0f;
+  for (int i = 0; i < cc.count; ++i) radius += (contact.manifold.points[i].position - centre).norm();
+  cc.twistRadius = radius / float(cc.count);
+
+  if (p.warmStart) {
+    cc.tangentImpulse1 = contact.frictionImpulse.dot(cc.tangent1);
+    cc.tangentImpulse2 = contact.frictionImpulse.dot(cc.tangent2);
+    cc.twistImpulse = contact.twistImpulse * std::max(0.0f, contact.frictionNormal.dot(n));
+  } else {
+    cc.tangentImpulse1 = cc.tangentImpulse2 = cc.twistImpulse = 0.0f;
   }
 }
 
 namespace {
 
 inline void apply(BodyStore& bodies, const ContactConstraint& c, const Vec3& P, const Vec3& angA,
-                  const Vec3& angB, float lambda) {
+                  const Vec3& angB) {
   if (c.dynA) {
-    bodies.v[c.a] -= (c.invMassA * lambda) * P;
-    bodies.w[c.a] -= lambda * angA;
+    bodies.v[c.a] -= c.invMassA * P;
+    bodies.w[c.a] -= angA;
   }
   if (c.dynB) {
-    bodies.v[c.b] += (c.invMassB * lambda) * P;
-    bodies.w[c.b] += lambda * angB;
+    bodies.v[c.b] += c.invMassB * P;
+    bodies.w[c.b] += angB;
   }
 }
 
@@ -85,13 +127,17 @@ inline void apply(BodyStore& bodies, const ContactConstraint& c, const Vec3& P, 
 void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n) {
   for (size_t k = 0; k < n; ++k) {
     const ContactConstraint& c = cs[k];
+    if (c.count == 0) continue;
+    Vec3 P = c.tangentImpulse1 * c.tangent1 + c.tangentImpulse2 * c.tangent2;
+    Vec3 angA = c.tangentImpulse1 * c.iAt1 + c.tangentImpulse2 * c.iAt2 + c.twistImpulse * c.iAtw;
+    Vec3 angB = c.tangentImpulse1 * c.iBt1 + c.tangentImpulse2 * c.iBt2 + c.twistImpulse * c.iBtw;
     for (int i = 0; i < c.count; ++i) {
       const ContactConstraint::Point& p = c.points[i];
-      const Vec3 P = p.normalImpulse * p.normal + p.tangentImpulse1 * p.tangent1 + p.tangentImpulse2 * p.tangent2;
-      const Vec3 angA = p.normalImpulse * p.iAn + p.tangentImpulse1 * p.iAt1 + p.tangentImpulse2 * p.iAt2;
-      const Vec3 angB = p.normalImpulse * p.iBn + p.tangentImpulse1 * p.iBt1 + p.tangentImpulse2 * p.iBt2;
-      apply(bodies, c, P, angA, angB, 1.0f);
+      P += p.normalImpulse * p.normal;
+      angA += p.normalImpulse * p.iAn;
+      angB += p.normalImpulse * p.iBn;
     }
+    apply(bodies, c, P, angA, angB);
   }
 }
 
@@ -99,48 +145,77 @@ float solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float o
   float residual = 0.0f;
   for (size_t k = 0; k < n; ++k) {
     ContactConstraint& c = cs[k];
+    const int m = c.count;
+    if (m == 0) continue;
     // Static and kinematic bodies are read (their velocity is given) but never written, so
     // islands that share a static body can be solved concurrently.
     Vec3 va = bodies.v[c.a], wa = bodies.w[c.a], vb = bodies.v[c.b], wb = bodies.w[c.b];
     const float mA = c.invMassA, mB = c.invMassB;
 
     // Friction first, bounded by the normal impulses of the previous sweep.
-    for (int i = 0; i < c.count; ++i) {
-      ContactConstraint::Point& p = c.points[i];
+    float normalTotal = 0.0f;
+    for (int i = 0; i < m; ++i) normalTotal += c.points[i].normalImpulse;
+    const float limit = c.friction * normalTotal;
+    {
+      // Twist about the normal.
+      const float vt = c.twistAxis.dot(wb - wa);
+      const float maxTwist = limit * c.twistRadius;
+      const float old = c.twistImpulse;
+      c.twistImpulse = std::clamp(old - omega * c.twistMass * vt, -maxTwist, maxTwist);
+      const float applied = c.twistImpulse - old;
+      wa -= applied * c.iAtw;
+      wb += applied * c.iBtw;
+    }
+    {
       // Both tangent rows together, clamped to the friction circle |λt| <= μ λn: clamping each axis
       // alone (a box) lets friction reach √2 μ λn and pushes a sliding body sideways.
-      const float limit = c.friction * p.normalImpulse;
       const Vec3 dv = vb - va;
-      const float vt1 = p.tangent1.dot(dv) + p.rBxt1.dot(wb) - p.rAxt1.dot(wa);
-      const float vt2 = p.tangent2.dot(dv) + p.rBxt2.dot(wb) - p.rAxt2.dot(wa);
-      const float old1 = p.tangentImpulse1, old2 = p.tangentImpulse2;
-      float n1 = old1 - omega * p.tangentMass1 * vt1;
-      float n2 = old2 - omega * p.tangentMass2 * vt2;
+      const float vt1 = c.tangent1.dot(dv) + c.rBxt1.dot(wb) - c.rAxt1.dot(wa);
+      const float vt2 = c.tangent2.dot(dv) + c.rBxt2.dot(wb) - c.rAxt2.dot(wa);
+      const float old1 = c.tangentImpulse1, old2 = c.tangentImpulse2;
+      float n1 = old1 - omega * (c.tangentMass[0][0] * vt1 + c.tangentMass[0][1] * vt2);
+      float n2 = old2 - omega * (c.tangentMass[1][0] * vt1 + c.tangentMass[1][1] * vt2);
       const float len2 = n1 * n1 + n2 * n2;
       if (len2 > limit * limit) {
         const float scale = len2 > 0.0f ? limit / std::sqrt(len2) : 0.0f;
         n1 *= scale;
         n2 *= scale;
       }
-      p.tangentImpulse1 = n1;
-      p.tangentImpulse2 = n2;
+      c.tangentImpulse1 = n1;
+      c.tangentImpulse2 = n2;
       const float a1 = n1 - old1, a2 = n2 - old2;
-      const Vec3 P = a1 * p.tangent1 + a2 * p.tangent2;
+      const Vec3 P = a1 * c.tangent1 + a2 * c.tangent2;
       va -= mA * P;
-      wa -= a1 * p.iAt1 + a2 * p.iAt2;
+      wa -= a1 * c.iAt1 + a2 * c.iAt2;
       vb += mB * P;
-      wb += a1 * p.iBt1 + a2 * p.iBt2;
+      wb += a1 * c.iBt1 + a2 * c.iBt2;
     }
+
     // Normal rows last: non-penetration matters more than friction, so each sweep ends with the
-    // normal rows satisfied (friction last left tilting torques that rocked stacks apart).
-    for (int i = 0; i < c.count; ++i) {
-      ContactConstraint::Point& p = c.points[i];
-      const float vn = p.normal.dot(vb - va) + p.rBxn.dot(wb) - p.rAxn.dot(wa);
-      const float b = useBias ? p.bias : (p.restitutionBias < 0.0f && p.normalImpulse > 0.0f ? p.restitutionBias : p.relaxBias);
-      const float dl = -omega * p.normalMass * (vn + b);
-      const float old = p.normalImpulse;
-      p.normalImpulse = std::max(0.0f, old + dl);
-      const float applied = p.normalImpulse - old;
+    // normal rows satisfied. The rows of the manifold are solved as one small problem: their
+    // velocities are read once, updated through the coupling matrix while a few projected passes
+    // settle the split of the load, and the net impulse change is applied to the bodies once.
+    float vn[kMaxManifoldPoints], bias[kMaxManifoldPoints], start[kMaxManifoldPoints];
+    for (int i = 0; i < m; ++i) {
+      const ContactConstraint::Point& p = c.points[i];
+      vn[i] = p.normal.dot(vb - va) + p.rBxn.dot(wb) - p.rAxn.dot(wa);
+      bias[i] = useBias ? p.bias : (p.restitutionBias < 0.0f && p.normalImpulse > 0.0f ? p.restitutionBias : p.relaxBias);
+      start[i] = p.normalImpulse;
+    }
+    const int passes = m > 1 ? kManifoldNormalPasses : 1;
+    for (int pass = 0; pass < passes; ++pass) {
+      for (int i = 0; i < m; ++i) {
+        ContactConstraint::Point& p = c.points[i];
+        const float old = p.normalImpulse;
+        p.normalImpulse = std::max(0.0f, old - omega * p.normalMass * (vn[i] + bias[i]));
+        const float applied = p.normalImpulse - old;
+        if (applied == 0.0f) continue;
+        for (int j = 0; j < m; ++j) vn[j] += c.normalCoupling[j][i] * applied;
+      }
+    }
+    for (int i = 0; i < m; ++i) {
+      const ContactConstraint::Point& p = c.points[i];
+      const float applied = p.normalImpulse - start[i];
       va -= (mA * applied) * p.normal;
       wa -= applied * p.iAn;
       vb += (mB * applied) * p.normal;
@@ -163,11 +238,11 @@ void storeImpulses(const ContactConstraint* cs, size_t n, Contact* contacts) {
   for (size_t k = 0; k < n; ++k) {
     const ContactConstraint& c = cs[k];
     Contact& ct = contacts[c.contact];
-    for (int i = 0; i < c.count; ++i) {
-      ct.normalImpulse[i] = c.points[i].normalImpulse;
-      const ContactConstraint::Point& p = c.points[i];
-      ct.frictionImpulse[i] = p.tangentImpulse1 * p.tangent1 + p.tangentImpulse2 * p.tangent2;
-    }
+    for (int i = 0; i < c.count; ++i) ct.normalImpulse[i] = c.points[i].normalImpulse;
+    if (c.count == 0) continue;
+    ct.frictionImpulse = c.tangentImpulse1 * c.tangent1 + c.tangentImpulse2 * c.tangent2;
+    ct.twistImpulse = c.twistImpulse;
+    ct.frictionNormal = c.twistAxis;
   }
 }
 

@@ -1,5 +1,7 @@
 #include "haif/islands.h"
 
+#include "dynamics/contact_solver.h"
+
 #include <algorithm>
 
 namespace haif {
@@ -38,7 +40,7 @@ void IslandBuilder::build(const BodyStore& bodies, const std::vector<Contact>& c
     const int32_t k = islandOfContact(c);
     if (k < 0) continue;
     ++unsorted_[k].contactCount;
-    unsorted_[k].rows += 3u * static_cast<uint32_t>(c.manifold.count);
+    unsorted_[k].rows += solverRowsFor(c.manifold.count);
   }
 
   // Largest first, so the longest task starts first when islands run in parallel.

@@ -14,7 +14,7 @@ namespace haif {
 struct Island {
   uint32_t firstBody = 0, bodyCount = 0;        ///< range in IslandSet::bodies
   uint32_t firstContact = 0, contactCount = 0;  ///< range in IslandSet::contacts
-  uint32_t rows = 0;                            ///< solver rows (3 per contact point): the work of one iteration
+  uint32_t rows = 0;                            ///< solver rows (solverRowsFor per manifold): the work of one iteration
 };
 
 struct IslandSet {

@@ -31,6 +31,7 @@ struct WorldSettings {
   float restitutionThreshold = 1.0f;///< m/s
   float contactMargin = 0.02f;      ///< speculative distance (m) beyond which points are not reported
   bool warmStart = true;
+  float maxPushVelocity = 0.2f;     ///< cap on the Baumgarte push-out speed (m/s)
   bool topDownOrder = true;         ///< solve the highest contacts of an island first
   bool sleeping = false;
   float timeToSleep = 0.5f;         ///< s an island must rest before it sleeps

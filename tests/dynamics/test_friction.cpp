@@ -41,9 +41,6 @@ RampResult slideOnRamp(float mu, float thetaDeg, float seconds) {
 class Ramp : public ::testing::TestWithParam<float> {};
 
 TEST_P(Ramp, SlidesAboveFrictionAngle) {
-  // Known defect, see the issue 2 note: on a 39-degree ramp (atan 0.6 + 8) the box
-  // slides far less than the analytic distance.
-  if (GetParam() > 0.5f) GTEST_SKIP() << "known defect: steep ramp, mu = 0.6";
   const float mu = GetParam();
   const float thetaDeg = std::atan(mu) * 180.0f / kPi + 8.0f;
   const RampResult r = slideOnRamp(mu, thetaDeg, 2.0f);
