@@ -3,11 +3,13 @@
 #include "app/commands.h"
 #include "app/frame_builder.h"
 #include "tools/atomic_file.h"
+#include "tools/frame_masks.h"
 #include "tools/run_report.h"
 #include "tools/simulation.h"
 #include "tools/video.h"
 
 #ifdef HAIF_HAVE_RENDER
+#include "render/overlay.h"
 #include "render/run_charts.h"
 #endif
 
@@ -181,6 +183,15 @@ int commandRun(int argc, char** argv) {
     if (!ensureWritableDir(chartsDir, error)) return fail(error);
     if (!render::writeRunCharts(chartsDir, series, render::RunChartOptions{}, &error))
       return fail("haif run: charts: " + error);
+    // The overlay prints timings: record where it is so `haif diff` can leave it out.
+    FrameMasks masks;
+    masks.width = width;
+    masks.height = height;
+    if (frame.overlay.enabled) {
+      const render::PanelRect r = render::overlayPanelRect(frame.overlay, width, height);
+      masks.regions.push_back({"overlay", PixelRect{r.x0, r.y0, r.x1, r.y1}});
+    }
+    if (!writeFileAtomic(framesDir + "/" + kFrameMasksFile, frameMasksJson(masks), error)) return fail(error);
     if (!video.empty() && !encodeVideoFromFrames(framesDir, 60.0 / frameEvery, video, error)) return fail(error);
   }
 #endif
