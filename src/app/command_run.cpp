@@ -4,12 +4,14 @@
 #include "app/frame_builder.h"
 #include "tools/atomic_file.h"
 #include "tools/frame_masks.h"
+#include "tools/progress.h"
 #include "tools/run_report.h"
 #include "tools/simulation.h"
 #include "tools/video.h"
 
 #ifdef HAIF_HAVE_RENDER
 #include "render/overlay.h"
+#include "render/png_io.h"
 #include "render/run_charts.h"
 #endif
 
@@ -96,6 +98,7 @@ int commandRun(int argc, char** argv) {
   std::vector<double> renderMs;
   bool renderFailed = false;
 
+  Progress progress("run", "step", frames);
 #ifdef HAIF_HAVE_RENDER
   std::unique_ptr<render::Renderer> renderer;
   FrameBuilder builder;
@@ -128,8 +131,17 @@ int commandRun(int argc, char** argv) {
     frame.overlay.iMax = float(std::min(world.controller().iMax, 1000));
     frame.overlay.budgetMs = float(info.budgetMs);
   }
+  // With --video the frames stream into ffmpeg as they are rendered (and are still written as PNGs).
+  VideoEncoder encoder;
+  const bool encoding = !video.empty() && ffmpegAvailable();
+  if (!video.empty() && !encoding)
+    std::fprintf(stderr, "haif run: ffmpeg not found on PATH (apt-get install ffmpeg): no %s; the PNG frames are in %s\n",
+                 video.c_str(), framesDir.c_str());
+  if (encoding && !encoder.open(video, width, height, 60.0 / frameEvery, error)) return fail("haif run: " + error);
+  std::vector<uint8_t> pixels;
   int frameIndex = 0;
   auto afterStep = [&](const World& w) {
+    progress.advance(int(w.lastStats().step) + 1);
     if (!render || renderFailed) return;
     const StepStats& s = w.lastStats();
     frame.overlay.iterations.push_back(float(s.iterationsChosen));
@@ -144,17 +156,19 @@ int commandRun(int argc, char** argv) {
     char name[64];
     std::snprintf(name, sizeof name, "/frame_%05d.png", frameIndex++);
     std::string why;
-    if (!renderer->renderToPng(frame, framesDir + name, &why)) {
-      error = "haif run: rendering frame " + std::to_string(frameIndex - 1) + ": " + why;
+    if (!renderer->render(frame, pixels, &why) || !render::writePng(framesDir + name, width, height, pixels.data(), &why) ||
+        (encoding && !encoder.write(pixels.data(), why))) {
+      error = "haif run: frame " + std::to_string(frameIndex - 1) + ": " + why;
       renderFailed = true;
     }
     renderMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   };
 #else
-  std::function<void(const World&)> afterStep;
+  auto afterStep = [&](const World& w) { progress.advance(int(w.lastStats().step) + 1); };
 #endif
 
   const bool finite = runSteps(sim, frames, stats, metrics, afterStep);
+  progress.finish();
   if (renderFailed) return fail(error);
   info.stateHash = world.stateHash();
   if (!renderMs.empty()) info.renderMsPerFrameMedian = quantile(renderMs, 0.5);
@@ -192,7 +206,7 @@ int commandRun(int argc, char** argv) {
       masks.regions.push_back({"overlay", PixelRect{r.x0, r.y0, r.x1, r.y1}});
     }
     if (!writeFileAtomic(framesDir + "/" + kFrameMasksFile, frameMasksJson(masks), error)) return fail(error);
-    if (!video.empty() && !encodeVideoFromFrames(framesDir, 60.0 / frameEvery, video, error)) return fail(error);
+    if (encoding && !encoder.finish(error)) return fail("haif run: " + error);
   }
 #endif
 
