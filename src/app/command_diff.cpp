@@ -92,7 +92,8 @@ bool resolveMasks(const std::string& spec, bool explicitMask, const FrameFolder&
         for (const FrameRegion& r : f->masks.regions) {
           bool seen = false;
           for (const FrameRegion& m : masks)
-            seen |= m.rect.x0 == r.rect.x0 && m.rect.y0 == r.rect.y0 && m.rect.x1 == r.rect.x1 && m.rect.y1 == r.rect.y1;
+            seen |= m.rect.x0 == r.rect.x0 && m.rect.y0 == r.rect.y0 && m.rect.x1 == r.rect.x1 &&
+                    m.rect.y1 == r.rect.y1;
           if (!seen) masks.push_back(r);
         }
       }
@@ -181,7 +182,8 @@ int commandDiff(int argc, char** argv) {
       if (e.is_regular_file() && e.path().extension() == ".png") fs::remove(e.path(), ec);
 
   Progress progress("diff", "frame", int(a.frames.size()));
-  if (!diffFrameFolders(a, b, options, limits, diffDir, report.frames, error, [&](int done) { progress.advance(done); }))
+  const auto onFrame = [&](int done) { progress.advance(done); };
+  if (!diffFrameFolders(a, b, options, limits, diffDir, report.frames, error, onFrame))
     return fail(error, kBadInput);
   progress.finish();
 

@@ -111,11 +111,8 @@ int commandRun(int argc, char** argv) {
     if (!renderer) return fail("haif run: renderer: " + error);
     if (!builder.registerMeshes(world, *renderer, error)) return fail("haif run: " + scenePath + ": " + error);
     const std::string view = cl.get("--view", "normal");
-    if (view == "normal") frame.mode = render::ViewMode::Normal;
-    else if (view == "island") frame.mode = render::ViewMode::Island;
-    else if (view == "sleep") frame.mode = render::ViewMode::Sleep;
-    else if (view == "heat") frame.mode = render::ViewMode::Heat;
-    else return fail("haif run: --view: expected normal, island, sleep or heat, got '" + view + "'", 2);
+    if (!parseViewMode(view, frame.mode))
+      return fail("haif run: --view: expected normal, island, sleep or heat, got '" + view + "'", 2);
     frame.showContacts = cl.has("--contacts");
     frame.overlay.enabled = !cl.has("--no-overlay");
     const std::string corner = cl.get("--overlay-corner", "tl");
@@ -135,7 +132,7 @@ int commandRun(int argc, char** argv) {
   VideoEncoder encoder;
   const bool encoding = !video.empty() && ffmpegAvailable();
   if (!video.empty() && !encoding)
-    std::fprintf(stderr, "haif run: ffmpeg not found on PATH (apt-get install ffmpeg): no %s; the PNG frames are in %s\n",
+    std::fprintf(stderr, "haif run: ffmpeg not found on PATH (apt-get install ffmpeg): no %s; the frames are in %s\n",
                  video.c_str(), framesDir.c_str());
   if (encoding && !encoder.open(video, width, height, 60.0 / frameEvery, error)) return fail("haif run: " + error);
   std::vector<uint8_t> pixels;
@@ -156,7 +153,8 @@ int commandRun(int argc, char** argv) {
     char name[64];
     std::snprintf(name, sizeof name, "/frame_%05d.png", frameIndex++);
     std::string why;
-    if (!renderer->render(frame, pixels, &why) || !render::writePng(framesDir + name, width, height, pixels.data(), &why) ||
+    if (!renderer->render(frame, pixels, &why) ||
+        !render::writePng(framesDir + name, width, height, pixels.data(), &why) ||
         (encoding && !encoder.write(pixels.data(), why))) {
       error = "haif run: frame " + std::to_string(frameIndex - 1) + ": " + why;
       renderFailed = true;

@@ -194,7 +194,8 @@ std::string diffReportHtml(const DiffReport& r, const std::string& outDir) {
   o << "</p>\n<table><tr><th>reference</th><td>" << html(r.reference.given) << "</td></tr>\n<tr><th>new</th><td>"
     << html(r.test.given) << "</td></tr>\n<tr><th>frames</th><td>" << r.frames.size() << " at " << r.reference.width
     << "&times;" << r.reference.height << "</td></tr>\n<tr><th>thresholds</th><td>colour distance &gt; "
-    << r.options.threshold << " counts as different" << (r.options.detectAntialiasing ? " (anti-aliased edges forgiven)" : "")
+    << r.options.threshold << " counts as different"
+    << (r.options.detectAntialiasing ? " (anti-aliased edges forgiven)" : "")
     << "; a frame fails when more than " << fmt("%.4g", 100.0 * r.thresholds.maxDiffRatio)
     << "% of its pixels differ or its SSIM is below " << r.thresholds.minSsim << "</td></tr>\n<tr><th>masked</th><td>";
   if (r.masks.empty()) o << "nothing";

@@ -89,7 +89,8 @@ bool checkFramePairs(const FrameFolder& a, const FrameFolder& b, std::string& er
     }
     if (wa != wb || ha != hb) {
       error = "size mismatch at " + n + ": reference is " + std::to_string(wa) + "x" + std::to_string(ha) +
-              ", new is " + std::to_string(wb) + "x" + std::to_string(hb) + " (render both at the same --width/--height)";
+              ", new is " + std::to_string(wb) + "x" + std::to_string(hb) +
+              " (render both at the same --width/--height)";
       return false;
     }
   }

@@ -94,7 +94,8 @@ bool isAntialiased(const Image& img, const Image& other, int x, int y) {
   // An anti-aliased pixel blends two sides: it needs something darker and something brighter next to it.
   if (dx < 0 || bx < 0) return false;
   // ... and one of those sides must be a flat area in both images (the shape's inside or the background).
-  return (inFlatArea(img, dx, dy) && inFlatArea(other, dx, dy)) || (inFlatArea(img, bx, by) && inFlatArea(other, bx, by));
+  return (inFlatArea(img, dx, dy) && inFlatArea(other, dx, dy)) ||
+         (inFlatArea(img, bx, by) && inFlatArea(other, bx, by));
 }
 
 void structuralSimilarity(const Image& a, const Image& b, const std::vector<PixelRect>& masks, int window,

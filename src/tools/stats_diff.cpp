@@ -37,8 +37,8 @@ bool parseTable(const std::string& text, const std::string& name, Table& t, std:
     if (line.empty()) continue;
     t.rows.push_back(splitCsvLine(line));
     if (t.rows.back().size() != t.header.size()) {
-      error = name + ":" + std::to_string(lineNo) + ": " + std::to_string(t.rows.back().size()) + " cells, the header has " +
-              std::to_string(t.header.size());
+      error = name + ":" + std::to_string(lineNo) + ": " + std::to_string(t.rows.back().size()) +
+              " cells, the header has " + std::to_string(t.header.size());
       return false;
     }
   }

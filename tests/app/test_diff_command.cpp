@@ -47,7 +47,8 @@ class DiffCommand : public ::testing::Test {
 
   test::ProcessResult diff(const std::string& a, const std::string& b, const std::string& out,
                            const std::string& extra = "") {
-    return runHaif("diff '" + a + "' '" + b + "' --out '" + (dir_ / out).string() + "' " + extra, dir_ / ("log_" + out));
+    return runHaif("diff '" + a + "' '" + b + "' --out '" + (dir_ / out).string() + "' " + extra,
+                   dir_ / ("log_" + out));
   }
 
   static nlohmann::json report(const std::string& out) {

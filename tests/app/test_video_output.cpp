@@ -21,7 +21,8 @@ const char* kSmallScene = R"({"name": "video_stack", "camera": {"eye": [9, 6, 9]
 class VideoOutput : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = test::scratchDir("haif_video_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = test::scratchDir("haif_video_" + std::string(info->name()));
     scene_ = (dir_ / "scene.json").string();
     std::ofstream(scene_) << kSmallScene;
   }

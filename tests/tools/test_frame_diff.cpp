@@ -135,9 +135,10 @@ TEST_F(FrameDiff, FoldersAreComparedPairByPairWithDiffImages) {
 }
 
 TEST(StatsDiff, TimingColumnsAreIgnoredAndPhysicsColumnsCompared) {
-  const std::string a = "step,total_ms,deadline_miss,iterations_chosen,residual\n0,1.5,0,10,0.01\n1,1.7,1,10,0.02\n";
-  const std::string sameButSlower = "step,total_ms,deadline_miss,iterations_chosen,residual\n0,9.5,1,10,0.01\n1,8.0,0,10,0.02\n";
-  const std::string differs = "step,total_ms,deadline_miss,iterations_chosen,residual\n0,1.5,0,10,0.01\n1,1.7,1,2,0.52\n";
+  const std::string header = "step,total_ms,deadline_miss,iterations_chosen,residual\n";
+  const std::string a = header + "0,1.5,0,10,0.01\n1,1.7,1,10,0.02\n";
+  const std::string sameButSlower = header + "0,9.5,1,10,0.01\n1,8.0,0,10,0.02\n";
+  const std::string differs = header + "0,1.5,0,10,0.01\n1,1.7,1,2,0.52\n";
   StatsDiff d;
   std::string error;
   ASSERT_TRUE(compareStatsCsv(a, sameButSlower, "a.csv", "b.csv", d, error)) << error;
