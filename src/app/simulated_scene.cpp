@@ -1,11 +1,45 @@
 #include "app/simulated_scene.h"
 
-#ifdef HAIF_HAVE_RENDER
-#include "app/frame_builder.h"
 #include "tools/simulation.h"
 
 #include <cstdio>
 #include <cstdlib>
+
+namespace haif {
+
+namespace {
+
+bool isBulletSpec(const std::string& spec) {
+  return spec.rfind("bullet", 0) == 0 && (spec.size() == 6 || spec[6] == ':');
+}
+
+}  // namespace
+
+bool checkSimulationSpec(const std::string& spec, std::string& error) {
+  if (isBulletSpec(spec)) {
+    const std::string arg = spec.size() > 7 ? spec.substr(7) : "";
+    char* end = nullptr;
+    const long n = std::strtol(arg.c_str(), &end, 10);
+    if (arg.empty() || *end != '\0' || n < 1 || n > 10000) {
+      error = "solver spec '" + spec + "': bullet needs an iteration count, e.g. bullet:10";
+      return false;
+    }
+    // The Bullet adapter implements SimulatedScene; until it is part of the build, say so plainly.
+    error = "solver spec '" + spec + "': this haif was not built with Bullet (no Bullet adapter in this build)";
+    return false;
+  }
+  SolverSpec solver;
+  if (!parseSolverSpec(spec, solver, error)) {
+    if (error.find("unknown mode") != std::string::npos) error.insert(error.size() - 1, ", bullet");
+    return false;
+  }
+  return true;
+}
+
+}  // namespace haif
+
+#ifdef HAIF_HAVE_RENDER
+#include "app/frame_builder.h"
 
 namespace haif {
 
@@ -96,23 +130,10 @@ class HaifScene : public SimulatedScene {
 
 std::unique_ptr<SimulatedScene> makeSimulatedScene(const std::string& scenePath, const std::string& spec, int threads,
                                                    std::string& error) {
-  if (spec.rfind("bullet", 0) == 0 && (spec.size() == 6 || spec[6] == ':')) {
-    const std::string arg = spec.size() > 7 ? spec.substr(7) : "";
-    char* end = nullptr;
-    const long n = std::strtol(arg.c_str(), &end, 10);
-    if (arg.empty() || *end != '\0' || n < 1 || n > 10000) {
-      error = "solver spec '" + spec + "': bullet needs an iteration count, e.g. bullet:10";
-      return nullptr;
-    }
-    // The Bullet adapter implements SimulatedScene; until it is part of the build, say so plainly.
-    error = "solver spec '" + spec + "': this haif was not built with Bullet (no Bullet adapter in this build)";
-    return nullptr;
-  }
+  // A Bullet build would construct its adapter here when isBulletSpec(spec).
+  if (!checkSimulationSpec(spec, error)) return nullptr;
   SolverSpec solver;
-  if (!parseSolverSpec(spec, solver, error)) {
-    if (error.find("unknown mode") != std::string::npos) error.insert(error.size() - 1, ", bullet");
-    return nullptr;
-  }
+  parseSolverSpec(spec, solver, error);
   auto scene = std::make_unique<HaifScene>();
   if (!scene->open(scenePath, spec, solver, threads, error)) return nullptr;
   return scene;

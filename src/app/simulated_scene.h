@@ -3,6 +3,16 @@
 // implement it; another engine (the Bullet adapter, "bullet:10") plugs in by implementing it too.
 #pragma once
 
+#include <string>
+
+namespace haif {
+
+/// Checks a set-up's syntax and that this build can run it (bullet:N needs the Bullet adapter).
+/// One error line naming the spec on failure.
+bool checkSimulationSpec(const std::string& spec, std::string& error);
+
+}  // namespace haif
+
 #ifdef HAIF_HAVE_RENDER
 #include "render/frame_input.h"
 #include "render/renderer.h"

@@ -7,7 +7,8 @@ namespace haif {
 
 namespace {
 constexpr double kQuietSeconds = 2.0;  // nothing is printed before this
-constexpr double kIntervalSeconds = 2.0;
+constexpr double kTerminalInterval = 1.0;  // a rewritten line can update often
+constexpr double kLogInterval = 10.0;      // a log gets one line per interval
 }  // namespace
 
 Progress::Progress(std::string what, std::string unit, int total)
@@ -19,7 +20,8 @@ void Progress::advance(int done) {
   lastDone_ = done;
   const auto now = std::chrono::steady_clock::now();
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  if (elapsed < kQuietSeconds || std::chrono::duration<double>(now - last_).count() < kIntervalSeconds) return;
+  const double interval = tty_ ? kTerminalInterval : kLogInterval;
+  if (elapsed < kQuietSeconds || (printed_ && std::chrono::duration<double>(now - last_).count() < interval)) return;
   last_ = now;
   printed_ = true;
   const double rate = done / elapsed;

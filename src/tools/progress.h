@@ -11,7 +11,7 @@ class Progress {
  public:
   /// `what` prefixes every line ("compare"), `unit` names the items ("frame"), `total` of them.
   Progress(std::string what, std::string unit, int total);
-  /// Call after each item; prints at most every `interval` seconds.
+  /// Call after each item; prints at most once a second on a terminal, every 10 s into a log.
   void advance(int done);
   /// Ends an overwritten terminal line; prints the final count if anything was printed.
   void finish();
