@@ -13,20 +13,28 @@ bool isBulletSpec(const std::string& spec) {
   return spec.rfind("bullet", 0) == 0 && (spec.size() == 6 || spec[6] == ':');
 }
 
+// The N of "bullet:N", or 0 when it is not a count in [1, 10000].
+int bulletIterations(const std::string& spec) {
+  const std::string arg = spec.size() > 7 ? spec.substr(7) : "";
+  char* end = nullptr;
+  const long n = std::strtol(arg.c_str(), &end, 10);
+  return arg.empty() || *end != '\0' || n < 1 || n > 10000 ? 0 : int(n);
+}
+
 }  // namespace
 
 bool checkSimulationSpec(const std::string& spec, std::string& error) {
   if (isBulletSpec(spec)) {
-    const std::string arg = spec.size() > 7 ? spec.substr(7) : "";
-    char* end = nullptr;
-    const long n = std::strtol(arg.c_str(), &end, 10);
-    if (arg.empty() || *end != '\0' || n < 1 || n > 10000) {
+    if (bulletIterations(spec) == 0) {
       error = "solver spec '" + spec + "': bullet needs an iteration count, e.g. bullet:10";
       return false;
     }
-    // The Bullet adapter implements SimulatedScene; until it is part of the build, say so plainly.
+#ifdef HAIF_HAVE_BULLET
+    return true;
+#else
     error = "solver spec '" + spec + "': this haif was not built with Bullet (no Bullet adapter in this build)";
     return false;
+#endif
   }
   SolverSpec solver;
   if (!parseSolverSpec(spec, solver, error)) {
@@ -130,8 +138,10 @@ class HaifScene : public SimulatedScene {
 
 std::unique_ptr<SimulatedScene> makeSimulatedScene(const std::string& scenePath, const std::string& spec, int threads,
                                                    std::string& error) {
-  // A Bullet build would construct its adapter here when isBulletSpec(spec).
   if (!checkSimulationSpec(spec, error)) return nullptr;
+#ifdef HAIF_HAVE_BULLET
+  if (isBulletSpec(spec)) return makeBulletScene(scenePath, bulletIterations(spec), threads, error);
+#endif
   SolverSpec solver;
   parseSolverSpec(spec, solver, error);
   auto scene = std::make_unique<HaifScene>();

@@ -55,6 +55,13 @@ class SimulatedScene {
   virtual void buildFrame(render::FrameInput& frame) const = 0;
 };
 
+#ifdef HAIF_HAVE_BULLET
+/// Provided by the Bullet adapter (built with HAIF_HAVE_BULLET): the scene simulated by Bullet with
+/// `iterations` solver iterations; its spec() is "bullet:N".
+std::unique_ptr<SimulatedScene> makeBulletScene(const std::string& scenePath, int iterations, int threads,
+                                                std::string& error);
+#endif
+
 /// The set-up `spec` on the scene file `scenePath`. Specs: fixed:N, adaptive:MS, model:MS, replay:STATS.csv
 /// and bullet:N (only in builds with the Bullet adapter: otherwise a clear error). One error line on failure.
 std::unique_ptr<SimulatedScene> makeSimulatedScene(const std::string& scenePath, const std::string& spec, int threads,
