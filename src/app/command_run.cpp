@@ -3,11 +3,15 @@
 #include "app/commands.h"
 #include "app/frame_builder.h"
 #include "tools/atomic_file.h"
+#include "tools/frame_masks.h"
+#include "tools/progress.h"
 #include "tools/run_report.h"
 #include "tools/simulation.h"
 #include "tools/video.h"
 
 #ifdef HAIF_HAVE_RENDER
+#include "render/overlay.h"
+#include "render/png_io.h"
 #include "render/run_charts.h"
 #endif
 
@@ -94,6 +98,7 @@ int commandRun(int argc, char** argv) {
   std::vector<double> renderMs;
   bool renderFailed = false;
 
+  Progress progress("run", "step", frames);
 #ifdef HAIF_HAVE_RENDER
   std::unique_ptr<render::Renderer> renderer;
   FrameBuilder builder;
@@ -106,11 +111,8 @@ int commandRun(int argc, char** argv) {
     if (!renderer) return fail("haif run: renderer: " + error);
     if (!builder.registerMeshes(world, *renderer, error)) return fail("haif run: " + scenePath + ": " + error);
     const std::string view = cl.get("--view", "normal");
-    if (view == "normal") frame.mode = render::ViewMode::Normal;
-    else if (view == "island") frame.mode = render::ViewMode::Island;
-    else if (view == "sleep") frame.mode = render::ViewMode::Sleep;
-    else if (view == "heat") frame.mode = render::ViewMode::Heat;
-    else return fail("haif run: --view: expected normal, island, sleep or heat, got '" + view + "'", 2);
+    if (!parseViewMode(view, frame.mode))
+      return fail("haif run: --view: expected normal, island, sleep or heat, got '" + view + "'", 2);
     frame.showContacts = cl.has("--contacts");
     frame.overlay.enabled = !cl.has("--no-overlay");
     const std::string corner = cl.get("--overlay-corner", "tl");
@@ -126,8 +128,17 @@ int commandRun(int argc, char** argv) {
     frame.overlay.iMax = float(std::min(world.controller().iMax, 1000));
     frame.overlay.budgetMs = float(info.budgetMs);
   }
+  // With --video the frames stream into ffmpeg as they are rendered (and are still written as PNGs).
+  VideoEncoder encoder;
+  const bool encoding = !video.empty() && ffmpegAvailable();
+  if (!video.empty() && !encoding)
+    std::fprintf(stderr, "haif run: ffmpeg not found on PATH (apt-get install ffmpeg): no %s; the frames are in %s\n",
+                 video.c_str(), framesDir.c_str());
+  if (encoding && !encoder.open(video, width, height, 60.0 / frameEvery, error)) return fail("haif run: " + error);
+  std::vector<uint8_t> pixels;
   int frameIndex = 0;
   auto afterStep = [&](const World& w) {
+    progress.advance(int(w.lastStats().step) + 1);
     if (!render || renderFailed) return;
     const StepStats& s = w.lastStats();
     frame.overlay.iterations.push_back(float(s.iterationsChosen));
@@ -142,17 +153,20 @@ int commandRun(int argc, char** argv) {
     char name[64];
     std::snprintf(name, sizeof name, "/frame_%05d.png", frameIndex++);
     std::string why;
-    if (!renderer->renderToPng(frame, framesDir + name, &why)) {
-      error = "haif run: rendering frame " + std::to_string(frameIndex - 1) + ": " + why;
+    if (!renderer->render(frame, pixels, &why) ||
+        !render::writePng(framesDir + name, width, height, pixels.data(), &why) ||
+        (encoding && !encoder.write(pixels.data(), why))) {
+      error = "haif run: frame " + std::to_string(frameIndex - 1) + ": " + why;
       renderFailed = true;
     }
     renderMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   };
 #else
-  std::function<void(const World&)> afterStep;
+  auto afterStep = [&](const World& w) { progress.advance(int(w.lastStats().step) + 1); };
 #endif
 
   const bool finite = runSteps(sim, frames, stats, metrics, afterStep);
+  progress.finish();
   if (renderFailed) return fail(error);
   info.stateHash = world.stateHash();
   if (!renderMs.empty()) info.renderMsPerFrameMedian = quantile(renderMs, 0.5);
@@ -181,7 +195,16 @@ int commandRun(int argc, char** argv) {
     if (!ensureWritableDir(chartsDir, error)) return fail(error);
     if (!render::writeRunCharts(chartsDir, series, render::RunChartOptions{}, &error))
       return fail("haif run: charts: " + error);
-    if (!video.empty() && !encodeVideoFromFrames(framesDir, 60.0 / frameEvery, video, error)) return fail(error);
+    // The overlay prints timings: record where it is so `haif diff` can leave it out.
+    FrameMasks masks;
+    masks.width = width;
+    masks.height = height;
+    if (frame.overlay.enabled) {
+      const render::PanelRect r = render::overlayPanelRect(frame.overlay, width, height);
+      masks.regions.push_back({"overlay", PixelRect{r.x0, r.y0, r.x1, r.y1}});
+    }
+    if (!writeFileAtomic(framesDir + "/" + kFrameMasksFile, frameMasksJson(masks), error)) return fail(error);
+    if (encoding && !encoder.finish(error)) return fail("haif run: " + error);
   }
 #endif
 

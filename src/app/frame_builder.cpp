@@ -4,6 +4,15 @@
 
 namespace haif {
 
+bool parseViewMode(const std::string& text, render::ViewMode& out) {
+  if (text == "normal") out = render::ViewMode::Normal;
+  else if (text == "island") out = render::ViewMode::Island;
+  else if (text == "sleep") out = render::ViewMode::Sleep;
+  else if (text == "heat") out = render::ViewMode::Heat;
+  else return false;
+  return true;
+}
+
 bool FrameBuilder::registerMeshes(const World& world, render::Renderer& renderer, std::string& error) {
   meshOfBody_.assign(world.bodyCount(), 0);
   for (uint32_t i = 0; i < world.bodyCount(); ++i) {

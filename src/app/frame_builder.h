@@ -11,6 +11,9 @@
 
 namespace haif {
 
+/// Parses a --view value (normal, island, sleep, heat); false for anything else.
+bool parseViewMode(const std::string& text, render::ViewMode& out);
+
 class FrameBuilder {
  public:
   /// Registers the hull and mesh geometry of the world's bodies with the renderer (once).

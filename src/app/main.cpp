@@ -21,6 +21,16 @@ void usage(FILE* out) {
       "  bench           the seed's table: sequential fixed-10 against HAIF adaptive on stacks_N\n"
       "                  [--scenes a,b,..] [--steps N] [--budget-ms B] [--threads T] [--out DIR]\n"
       "  calibrate       measure this machine's cost model [--out FILE] [--threads T]\n"
+      "  compare SCENE   two solver set-ups of one scene side by side in one video\n"
+      "                  --left SPEC --right SPEC  (SPEC: fixed:N, adaptive:MS, model:MS, replay:STATS.csv,\n"
+      "                  bullet:N) [--out FILE.mp4] [--frames N] [--frame-every K] [--width W --height H]\n"
+      "                  [--threads T] [--view normal|island|sleep|heat] [--no-overlay]\n"
+      "  reel PLAYLIST   title cards, scenes and comparisons in sequence in one video\n"
+      "                  [--out FILE.mp4] [--width W --height H] [--fps F] [--threads T] [--check]\n"
+      "  diff REF NEW    visual regression of two runs or frame folders; exit 0 pass, 1 fail, 2 bad input\n"
+      "                  [--out DIR] [--threshold T] [--max-diff-ratio R] [--min-ssim S]\n"
+      "                  [--mask overlay|none|X0:Y0:X1:Y1[,...]] [--no-aa] [--no-diff-images]\n"
+      "                  [--allow-adaptive]\n"
       "  help            this text\n",
       out);
 }
@@ -40,6 +50,9 @@ int main(int argc, char** argv) {
   if (!std::strcmp(cmd, "run")) return haif::commandRun(argc, argv);
   if (!std::strcmp(cmd, "bench")) return haif::commandBench(argc, argv);
   if (!std::strcmp(cmd, "calibrate")) return haif::commandCalibrate(argc, argv);
+  if (!std::strcmp(cmd, "diff")) return haif::commandDiff(argc, argv);
+  if (!std::strcmp(cmd, "compare")) return haif::commandCompare(argc, argv);
+  if (!std::strcmp(cmd, "reel")) return haif::commandReel(argc, argv);
   std::fprintf(stderr, "haif: unknown command '%s' (see 'haif help')\n", cmd);
   return 2;
 }

@@ -56,4 +56,19 @@ bool readPng(const std::string& path, int* w, int* h, std::vector<uint8_t>* rgba
   return true;
 }
 
+bool readPngSize(const std::string& path, int* w, int* h, std::string* error) {
+  png_image image;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&image, path.c_str())) {
+    if (error) *error = "cannot read PNG '" + path + "': " + image.message;
+    png_image_free(&image);
+    return false;
+  }
+  *w = static_cast<int>(image.width);
+  *h = static_cast<int>(image.height);
+  png_image_free(&image);
+  return true;
+}
+
 }  // namespace haif::render

@@ -15,4 +15,7 @@ bool writePng(const std::string& path, int w, int h, const uint8_t* rgba, std::s
 /// Reads any PNG as RGBA8, top row first. False and *error on failure.
 bool readPng(const std::string& path, int* w, int* h, std::vector<uint8_t>* rgba, std::string* error);
 
+/// Reads only the header of a PNG: its size. False and *error when it is not a readable PNG.
+bool readPngSize(const std::string& path, int* w, int* h, std::string* error);
+
 }  // namespace haif::render

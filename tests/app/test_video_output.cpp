@@ -1,0 +1,94 @@
+// Videos from `haif run --video`: streamed through ffmpeg (checked with ffprobe), PNG frames kept,
+// a clear note without ffmpeg, and a clean failure when ffmpeg dies.
+#include "haif_process.h"
+#include "video_probe.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+namespace haif {
+namespace {
+
+namespace fs = std::filesystem;
+using test::runHaif;
+
+const char* kSmallScene = R"({"name": "video_stack", "camera": {"eye": [9, 6, 9], "target": [0, 2, 0]},
+  "generators": [{"type": "ground"}, {"type": "stack", "count": 5}]})";
+
+class VideoOutput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = test::scratchDir("haif_video_" + std::string(info->name()));
+    scene_ = (dir_ / "scene.json").string();
+    std::ofstream(scene_) << kSmallScene;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  int countFiles(const fs::path& d, const std::string& ext) {
+    if (!fs::exists(d)) return 0;
+    return int(std::count_if(fs::directory_iterator(d), fs::directory_iterator{},
+                             [&](const fs::directory_entry& e) { return e.path().extension() == ext; }));
+  }
+
+  fs::path dir_;
+  std::string scene_;
+};
+
+TEST_F(VideoOutput, RunVideoHasEveryFrameAtEvenSizeWithTheIndexFirst) {
+  if (!test::haveProgram("ffmpeg") || !test::haveProgram("ffprobe")) GTEST_SKIP() << "ffmpeg/ffprobe not installed";
+  const fs::path out = dir_ / "run", video = dir_ / "clips" / "run.mp4";
+  // Odd width and height: the encoder pads to even dimensions for yuv420p.
+  const auto r = runHaif("run '" + scene_ + "' --frames 24 --frame-every 2 --width 161 --height 91 --error-every 0 " +
+                             "--out '" + out.string() + "' --video '" + video.string() + "'",
+                         dir_);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const test::VideoInfo v = test::probeVideo(video);
+  ASSERT_TRUE(v.ok) << "ffprobe could not read " << video;
+  EXPECT_EQ(v.frames, 12);
+  EXPECT_EQ(v.width, 162);
+  EXPECT_EQ(v.height, 92);
+  EXPECT_EQ(v.codec, "h264");
+  EXPECT_EQ(v.pixelFormat, "yuv420p");
+  EXPECT_TRUE(v.indexFirst) << "moov should precede mdat (+faststart)";
+  // The PNG frames are still written, and no temporary video is left beside the video.
+  EXPECT_EQ(countFiles(out / "frames", ".png"), 12);
+  EXPECT_EQ(countFiles(dir_ / "clips", ".mp4"), 1);
+  for (const auto& e : fs::directory_iterator(dir_ / "clips")) EXPECT_NE(e.path().filename().string()[0], '.');
+}
+
+TEST_F(VideoOutput, WithoutFfmpegTheFramesAreKeptAndTheMessageSaysSo) {
+  const fs::path out = dir_ / "run", video = dir_ / "run.mp4";
+  // /bin is enough for the shell; ffmpeg lives in /usr/bin.
+  const auto r = runHaif("run '" + scene_ + "' --frames 6 --width 64 --height 48 --error-every 0 --out '" +
+                             out.string() + "' --video '" + video.string() + "'",
+                         dir_, "PATH=/nonexistent ");
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("ffmpeg not found"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find((out / "frames").string()), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(video));
+  EXPECT_EQ(countFiles(out / "frames", ".png"), 6);
+}
+
+TEST_F(VideoOutput, AnFfmpegThatFailsGivesOneErrorAndNoVideo) {
+  // A stand-in ffmpeg that reads nothing and fails: haif must not die of SIGPIPE or leave files.
+  const fs::path bin = dir_ / "bin";
+  fs::create_directories(bin);
+  std::ofstream(bin / "ffmpeg") << "#!/bin/sh\nexit 3\n";
+  fs::permissions(bin / "ffmpeg", fs::perms::owner_all);
+  const fs::path out = dir_ / "run", video = dir_ / "clips" / "run.mp4";
+  const auto r = runHaif("run '" + scene_ + "' --frames 6 --width 256 --height 256 --error-every 0 --out '" +
+                             out.string() + "' --video '" + video.string() + "'",
+                         dir_, "PATH='" + bin.string() + ":/usr/bin:/bin' ");
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_LT(r.exitCode, 128) << "killed by a signal: " << r.err;
+  EXPECT_NE(r.err.find("ffmpeg failed (exit status 3)"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(countFiles(dir_ / "clips", ".mp4"), 0);
+}
+
+}  // namespace
+}  // namespace haif
