@@ -194,3 +194,23 @@ TEST_F(RunCommand, SameRunTwiceGivesSameHash) {
 }
 
 }  // namespace
+
+namespace {
+
+// Rendering only reads the world: the run's state_hash is the same with and without frames.
+TEST_F(RunCommand, RenderingDoesNotChangeTheSimulation) {
+  const fs::path a = dir_ / "headless", b = dir_ / "rendered";
+  ASSERT_EQ(haif("run '" + kStacks + "' --no-render --frames 12 --threads 1 --out '" + a.string() + "'").exitCode, 0);
+  const Result r = haif("run '" + kStacks + "' --frames 12 --frame-every 4 --width 160 --height 120 --threads 1 --out '" +
+                        b.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  ASSERT_TRUE(fs::exists(b / "frames" / "frame_00000.png")) << "the rendered run wrote no frames";
+  auto hashOf = [](const fs::path& d) {
+    std::ifstream in(d / "summary.json");
+    return nlohmann::json::parse(in).value("state_hash", std::string());
+  };
+  EXPECT_FALSE(hashOf(a).empty());
+  EXPECT_EQ(hashOf(a), hashOf(b));
+}
+
+}  // namespace
