@@ -256,6 +256,44 @@ void World::solveIslands(int iterations) {
     islandIterations_[k] = n > 0 ? it : 0;
     islandResidual_[k] = residual;
   });
+  if (tol > 0.0f && iterations > 0) shareSpareIterations(iterations);
+}
+
+// Islands that converged early leave part of the step's work unspent: Σ (I − run) × rows. That
+// budget goes, largest island first, to islands still above the tolerance, each at most doubling
+// its count (a bound that depends only on I, so replaying the counts reproduces the run).
+void World::shareSpareIterations(int iterations) {
+  const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
+  uint64_t spare = 0;
+  for (uint32_t k = 0; k < m; ++k)
+    spare += uint64_t(iterations - std::min(iterations, islandIterations_[k])) * islands_.islands[k].rows;
+  islandExtra_.assign(m, 0);
+  bool any = false;
+  const float tol = settings_.residualTolerance;
+  for (uint32_t k = 0; k < m && spare > 0; ++k) {
+    const uint32_t rows = islands_.islands[k].rows;
+    if (rows == 0 || islandResidual_[k] < tol) continue;
+    const int extra = int(std::min<uint64_t>(uint64_t(iterations), spare / rows));
+    if (extra == 0) continue;
+    islandExtra_[k] = extra;
+    spare -= uint64_t(extra) * rows;
+    any = true;
+  }
+  if (!any) return;
+  const float omega = settings_.omega;
+  forEachIsland([&](uint32_t k) {
+    if (islandExtra_[k] == 0) return;
+    const Island& isl = islands_.islands[k];
+    ContactConstraint* cs = constraints_.data() + isl.firstContact;
+    int it = 0;
+    float residual = islandResidual_[k];
+    while (it < islandExtra_[k] && residual >= tol) {
+      residual = solveIteration(bodies_, cs, isl.contactCount, omega, true);
+      ++it;
+    }
+    islandIterations_[k] += it;
+    islandResidual_[k] = residual;
+  });
 }
 
 void World::relaxIslands(int relaxIterations) {

@@ -108,6 +108,7 @@ class World {
   void narrowPhase();
   void solve(int iterations);
   void solveIslands(int iterations);
+  void shareSpareIterations(int iterations);
   void relaxIslands(int relaxIterations);
   void summariseIterations();
   SolverParams solverParams() const;
@@ -138,6 +139,7 @@ class World {
   std::vector<ContactConstraint> constraints_;
   std::vector<int> islandIterations_;
   std::vector<float> islandResidual_;
+  std::vector<int> islandExtra_;      // spare iterations given to unconverged islands this step
   std::vector<uint32_t> batchStart_;  // island batches for parallel solving
 
   std::vector<std::vector<uint32_t>> sleepSets_;
