@@ -18,8 +18,11 @@ void usage(FILE* out) {
       "                  [--width W --height H] [--view normal|island|sleep|heat] [--contacts]\n"
       "                  [--no-overlay] [--overlay-corner tl|tr|bl|br] [--frame-every K]\n"
       "                  [--error-every K] [--video FILE.mp4]\n"
-      "  bench           the seed's table: sequential fixed-10 against HAIF adaptive on stacks_N\n"
-      "                  [--scenes a,b,..] [--steps N] [--budget-ms B] [--threads T] [--out DIR]\n"
+      "  bench           run time against error: iteration and budget sweeps per scene and engine,\n"
+      "                  the seed's table (sequential / HAIF / Bullet); results.csv, report.md, plots\n"
+      "                  [--scenes a,b,..] [--engines haif,bullet] [--quick] [--steps N] [--threads T]\n"
+      "                  [--iterations 1,2,..] [--budgets 1,2,..] [--budget-ms B] [--error-every K]\n"
+      "                  [--out DIR]\n"
       "  calibrate       measure this machine's cost model [--out FILE] [--threads T]\n"
       "  help            this text\n",
       out);

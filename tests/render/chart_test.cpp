@@ -68,6 +68,37 @@ TEST(Chart, LegendTextIsDrawnInsideThePlot) {
   EXPECT_EQ(elsewhere, 0);
 }
 
+TEST(Chart, PointsAtGivenXOnLogAxesLandOnTheirDecades) {
+  auto text = font();
+  ASSERT_TRUE(text);
+  const int w = 500, h = 400;
+  std::vector<uint8_t> px(static_cast<size_t>(w) * h * 4);
+  Canvas canvas(px.data(), w, h);
+  ChartSpec spec;
+  spec.logX = spec.logY = true;
+  spec.legendBottomLeft = true;
+  ChartSeries s{"curve", {100.f, 10.f, 1.f}, Rgba{0, 0, 255, 255}, ChartSeries::Style::Line, 0.f};
+  s.x = {0.1f, 1.f, 10.f};
+  s.marker = 9.f;
+  spec.series.push_back(s);
+  const ChartGeometry g = drawChart(canvas, *text, 0, 0, w, h, spec, ChartStyle{});
+  ASSERT_TRUE(g.logX && g.logY);
+  // Decades are evenly spaced on both axes: x 0.1..10, y 1..100.
+  EXPECT_NEAR(g.xToPixel(1.0) - g.xToPixel(0.1), g.xToPixel(10.0) - g.xToPixel(1.0), 0.01f);
+  EXPECT_NEAR(g.xToPixel(0.1), g.left, 0.5f);
+  EXPECT_NEAR(g.xToPixel(10.0), g.right, 0.5f);
+  EXPECT_NEAR(g.yToPixel(100.0), g.top, 0.5f);
+  // A blue dot at each point (markers only: width 0), and no blue half-way between two points.
+  auto blue = [&](float x, float y) {
+    const auto p = test::at(px, w, static_cast<int>(x), static_cast<int>(y));
+    return p.b > 200 && p.r < 80 && p.g < 80;
+  };
+  EXPECT_TRUE(blue(g.xToPixel(0.1) + 2.f, g.yToPixel(100.0) + 2.f));  // corners: inside the plot, off the axes
+  EXPECT_TRUE(blue(g.xToPixel(1.0), g.yToPixel(10.0)));
+  EXPECT_TRUE(blue(g.xToPixel(10.0) - 3.f, g.yToPixel(1.0) - 3.f));
+  EXPECT_FALSE(blue(g.xToPixel(std::sqrt(10.0)), g.yToPixel(std::sqrt(10.0))));
+}
+
 TEST(Chart, TextRendererDrawsGlyphsAndMeasures) {
   auto text = font();
   ASSERT_TRUE(text);
