@@ -174,7 +174,8 @@ TEST_F(BenchCommand, TinySweepWritesResultsReportAndPlot) {
 TEST_F(BenchCommand, UnknownEngineIsRefused) {
   const fs::path out = dir_ / "out";
   const std::string tail = " --steps 5 --out '" + out.string() + "'";
-  expectCleanFailure(haif("bench --scenes '" + kStacks + "' --engines haif,physx" + tail), out, {"--engines", "physx", "haif, bullet"});
+  expectCleanFailure(haif("bench --scenes '" + kStacks + "' --engines haif,physx" + tail), out,
+                     {"--engines", "physx", "haif, bullet"});
   EXPECT_FALSE(fs::exists(out));
 }
 
@@ -182,7 +183,8 @@ TEST_F(BenchCommand, BulletWithoutBulletSaysSo) {
   if (kBullet) GTEST_SKIP() << "this build has Bullet";
   const fs::path out = dir_ / "out";
   const std::string tail = " --steps 5 --out '" + out.string() + "'";
-  expectCleanFailure(haif("bench --scenes '" + kStacks + "' --engines bullet" + tail), out, {"bullet", "without Bullet"});
+  expectCleanFailure(haif("bench --scenes '" + kStacks + "' --engines bullet" + tail), out,
+                     {"bullet", "without Bullet"});
 }
 
 TEST_F(BenchCommand, BadListsAndMissingScenes) {
