@@ -71,17 +71,18 @@ SeedTriple findSeedTriple(const std::vector<BenchResult>& rows, const std::strin
 
 std::string benchResultsCsv(const std::vector<BenchResult>& rows) {
   std::string csv =
-      "scene,bodies,engine,mode,param,label,threads,steps,ms_per_step_median,ms_per_step_p95,fps,iterations_mean,"
-      "deadline_miss_rate,solve_error_mean,max_penetration_m,rms_penetration_m,max_penetration_fraction,"
-      "mean_drop_m,max_drop_m,jitter_rms_velocity_m_s,nan_detected,state_hash\n";
+      "scene,bodies,engine,mode,param,label,threads,steps,ms_per_step_median,ms_per_step_p95,"
+      "cpu_ms_per_step_median,fps,iterations_mean,deadline_miss_rate,solve_error_mean,max_penetration_m,"
+      "rms_penetration_m,max_penetration_fraction,mean_drop_m,max_drop_m,jitter_rms_velocity_m_s,nan_detected,"
+      "state_hash\n";
   char line[1024];
   for (const BenchResult& r : rows) {
     std::snprintf(line, sizeof line,
-                  "%s,%u,%s,%s,%g,%s,%d,%d,%.4f,%.4f,%.1f,%.2f,%.4f,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%016" PRIx64
-                  "\n",
+                  "%s,%u,%s,%s,%g,%s,%d,%d,%.4f,%.4f,%.4f,%.1f,%.2f,%.4f,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,"
+                  "%016" PRIx64 "\n",
                   r.scene.c_str(), r.bodies, r.engine.c_str(), r.mode.c_str(), r.param, r.label.c_str(), r.threads,
-                  r.steps, r.msMedian, r.msP95, r.msMedian > 0.0 ? 1000.0 / r.msMedian : 0.0, r.iterationsMean,
-                  r.missRate, fmt("%.6g", r.solveError).c_str(), r.maxPenetration, r.rmsPenetration,
+                  r.steps, r.msMedian, r.msP95, r.cpuMsMedian, r.msMedian > 0.0 ? 1000.0 / r.msMedian : 0.0,
+                  r.iterationsMean, r.missRate, fmt("%.6g", r.solveError).c_str(), r.maxPenetration, r.rmsPenetration,
                   r.maxPenetrationFraction, r.meanDrop, r.maxDrop, r.jitter, r.nan ? 1 : 0, r.stateHash);
     csv += line;
   }
@@ -114,6 +115,20 @@ std::string benchReportMarkdown(const std::vector<BenchResult>& rows, const Benc
     md += "| " + s + " | " + std::to_string(any->bodies) + " | " + ms(t.sequential) + " | " + ms(t.haif) + " | " +
           ms(t.bullet) + " | " + fps(t.sequential) + " | " + fps(t.haif) + " | " + fps(t.bullet) + " | " +
           ratio(t.sequential, t.haif) + " | " + ratio(t.bullet, t.haif) + " |\n";
+  }
+  md += "\nTheir work: median process CPU time per step (ms, all threads). On a machine busy with other "
+        "programs wall time is inflated by waiting; CPU time is not, and for one thread it is the step time.\n\n"
+        "| scene | sequential CPU ms | HAIF CPU ms | Bullet CPU ms | Bullet / sequential |\n"
+        "|---|---:|---:|---:|---:|\n";
+  for (const std::string& s : scenes) {
+    const SeedTriple t = findSeedTriple(rows, s, info.threads, info.seedBudgetMs);
+    if (!t.sequential && !t.haif && !t.bullet) continue;
+    auto cpu = [](const BenchResult* r) { return r ? fmt("%.3f", r->cpuMsMedian) : "—"; };
+    md += "| " + s + " | " + cpu(t.sequential) + " | " + cpu(t.haif) + " | " + cpu(t.bullet) + " | " +
+          (t.sequential && t.bullet && t.sequential->cpuMsMedian > 0.0
+               ? fmt("%.2fx", t.bullet->cpuMsMedian / t.sequential->cpuMsMedian)
+               : "—") +
+          " |\n";
   }
   md += "\nTheir errors (sequential / HAIF / Bullet; n/a: not measurable for that engine):\n\n"
         "| scene | solve error | max penetration (m) | mean drop (m) | jitter (m/s) | HAIF iterations (mean) | "
@@ -178,13 +193,15 @@ std::string benchReportMarkdown(const std::vector<BenchResult>& rows, const Benc
 
   md += "## Every run\n\n";
   for (const std::string& s : scenes) {
-    md += "**" + s + "**\n\n| set-up | threads | ms/step median | p95 | iterations | deadline misses | solve error | "
+    md += "**" + s + "**\n\n| set-up | threads | ms/step median | p95 | CPU ms | iterations | deadline misses | "
+          "solve error | "
           "max penetration (m) | (of size) | RMS penetration (m) | mean drop (m) | max drop (m) | jitter (m/s) |\n"
-          "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+          "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const BenchResult& r : rows) {
       if (r.scene != s) continue;
       md += "| " + r.label + (r.nan ? " (NaN after " + std::to_string(r.steps) + " steps)" : "") + " | " +
             std::to_string(r.threads) + " | " + fmt("%.3f", r.msMedian) + " | " + fmt("%.3f", r.msP95) + " | " +
+            fmt("%.3f", r.cpuMsMedian) + " | " +
             fmt("%.1f", r.iterationsMean) + " | " + (r.mode == "adaptive" ? fmt("%.1f%%", 100.0 * r.missRate) : "—") +
             " | " + fmt("%.3g", r.solveError) + " | " + fmt("%.3g", r.maxPenetration) + " | " +
             fmt("%.1f%%", 100.0 * r.maxPenetrationFraction) + " | " + fmt("%.3g", r.rmsPenetration) + " | " +

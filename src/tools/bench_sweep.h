@@ -26,6 +26,9 @@ struct BenchResult {
   std::string label;         ///< e.g. "haif adaptive:4"
   int threads = 1, steps = 0;
   double msMedian = 0, msP95 = 0;
+  /// Median process CPU time of a step (all threads, ms): the work, which other programs on a busy
+  /// machine do not inflate the way they inflate wall time; equals ms/step for one thread on an idle machine.
+  double cpuMsMedian = 0;
   double iterationsMean = 0, missRate = 0;
   double solveError = NAN;   ///< mean DESIGN.md §5 solve error over the sampled steps; NaN: not available
   double maxPenetration = 0, rmsPenetration = 0, maxPenetrationFraction = 0;

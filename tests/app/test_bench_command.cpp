@@ -94,9 +94,10 @@ TEST_F(BenchCommand, TinySweepWritesResultsReportAndPlot) {
   ASSERT_TRUE(std::getline(lines, headerLine));
   const std::vector<std::string> header = split(headerLine);
   for (const char* col : {"scene", "bodies", "engine", "mode", "param", "label", "threads", "steps",
-                          "ms_per_step_median", "ms_per_step_p95", "fps", "iterations_mean", "deadline_miss_rate",
-                          "solve_error_mean", "max_penetration_m", "rms_penetration_m", "max_penetration_fraction",
-                          "mean_drop_m", "max_drop_m", "jitter_rms_velocity_m_s", "nan_detected", "state_hash"})
+                          "ms_per_step_median", "ms_per_step_p95", "cpu_ms_per_step_median", "fps",
+                          "iterations_mean", "deadline_miss_rate", "solve_error_mean", "max_penetration_m",
+                          "rms_penetration_m", "max_penetration_fraction", "mean_drop_m", "max_drop_m",
+                          "jitter_rms_velocity_m_s", "nan_detected", "state_hash"})
     EXPECT_NE(std::find(header.begin(), header.end(), col), header.end()) << "results.csv lacks " << col;
   auto col = [&](const std::vector<std::string>& row, const std::string& name) {
     const size_t i = size_t(std::find(header.begin(), header.end(), name) - header.begin());
@@ -115,6 +116,7 @@ TEST_F(BenchCommand, TinySweepWritesResultsReportAndPlot) {
     EXPECT_EQ(num(row, "steps"), 40);
     EXPECT_GT(num(row, "ms_per_step_median"), 0.0);
     EXPECT_LE(num(row, "ms_per_step_median"), num(row, "ms_per_step_p95"));
+    EXPECT_GT(num(row, "cpu_ms_per_step_median"), 0.0);
     EXPECT_EQ(col(row, "nan_detected"), "0");
     EXPECT_EQ(col(row, "state_hash").size(), 16u);
     // Penetration and drop from the engine's own contacts and positions: a standing stack stays
