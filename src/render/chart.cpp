@@ -320,8 +320,31 @@ ChartGeometry drawChart(Canvas& canvas, TextRenderer& text, int x0, int y0, int 
       for (const auto& e : entries) w = std::max(w, text.measure(e.name, fs));
       const float lineH = fs * 1.45f;
       const float bw = sw + 8.f + w + 2.f * gap, bh = lineH * entries.size() + gap;
-      const float bx = spec.legendBottomLeft ? g.left + 8.f : g.right - bw - 8.f;
-      const float by = spec.legendBottomLeft ? g.bottom - bh - 8.f : g.top + 8.f;
+      // Corner boxes: top right, top left, bottom left, bottom right.
+      const float cx[4] = {g.right - bw - 8.f, g.left + 8.f, g.left + 8.f, g.right - bw - 8.f};
+      const float cy[4] = {g.top + 8.f, g.top + 8.f, g.bottom - bh - 8.f, g.bottom - bh - 8.f};
+      int corner = static_cast<int>(spec.legend);
+      if (spec.legend == LegendCorner::Best) {
+        // Count the placed points and line samples each corner box would cover; the first least wins.
+        int hidden[4] = {0, 0, 0, 0};
+        auto cover = [&](float px, float py) {
+          for (int k = 0; k < 4; ++k) hidden[k] += px >= cx[k] && px <= cx[k] + bw && py >= cy[k] && py <= cy[k] + bh;
+        };
+        for (const auto& s : spec.series) {
+          const size_t m = std::min(s.x.size(), s.values.size());
+          for (size_t i = 0; i < m; ++i) {
+            if (!valid(s.x[i], s.values[i])) continue;
+            const float xa = g.xToPixel(s.x[i]), ya = g.yToPixel(s.values[i]);
+            cover(xa, ya);
+            cover(xa, ya);  // a point weighs more than a piece of line
+            if (i + 1 < m && s.width > 0.f && valid(s.x[i + 1], s.values[i + 1]))
+              for (int t = 1; t < 8; ++t)
+                cover(xa + (g.xToPixel(s.x[i + 1]) - xa) * t / 8.f, ya + (g.yToPixel(s.values[i + 1]) - ya) * t / 8.f);
+          }
+        }
+        corner = static_cast<int>(std::min_element(hidden, hidden + 4) - hidden);
+      }
+      const float bx = cx[corner], by = cy[corner];
       canvas.fillRect(bx, by, bx + bw, by + bh, Rgba{255, 255, 255, 225});
       canvas.line(bx, by, bx + bw, by, 1.f, style.grid);
       canvas.line(bx, by + bh, bx + bw, by + bh, 1.f, style.grid);

@@ -36,6 +36,10 @@ struct ChartHLine {
   bool dashed = true;    ///< dashed or solid
 };
 
+/// Where the legend box sits inside the plot. Best: the corner that hides the fewest points of
+/// series placed at given x (others count as top right).
+enum class LegendCorner { TopRight, TopLeft, BottomLeft, BottomRight, Best };
+
 /// What to plot.
 struct ChartSpec {
   std::string title;                 ///< drawn above the plot
@@ -44,7 +48,7 @@ struct ChartSpec {
   std::vector<ChartHLine> hlines;    ///< reference lines
   bool logY = false;                 ///< log10 y axis (non-positive values are skipped)
   bool logX = false;                 ///< log10 x axis (series with x only; non-positive x skipped)
-  bool legendBottomLeft = false;     ///< legend in the bottom-left corner of the plot (default: top right)
+  LegendCorner legend = LegendCorner::TopRight;  ///< where the legend box goes
   float yMin = NAN, yMax = NAN;      ///< fixed y range; NaN = from the data
   float xStart = 0.f, xStep = 1.f;   ///< x of the first value and spacing
 };

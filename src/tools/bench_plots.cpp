@@ -29,7 +29,7 @@ render::ChartSpec panel(const std::string& scene, const std::vector<BenchResult>
   spec.yLabel = std::string(m.title) + ", log scale";
   spec.logX = true;
   spec.logY = true;
-  spec.legendBottomLeft = true;  // cheap and exact is the empty corner of an error-against-cost plot
+  spec.legend = render::LegendCorner::Best;
   // One curve per engine, mode and thread count, in increasing iterations / budget.
   std::map<std::string, std::vector<const BenchResult*>> curves;
   std::vector<double> x, y;
