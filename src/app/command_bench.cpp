@@ -1,16 +1,21 @@
-// haif bench: the seed paper's comparison on the stacks_N scenes, sequential (1 thread, fixed 10
-// iterations) against HAIF (all threads, adaptive, 4 ms budget): step time, FPS, improvement, and
-// the solve error each one costs. Writes DIR/bench.csv and DIR/bench.md.
+// haif bench: run time against error. For each scene, sweeps fixed iteration counts on every engine
+// and adaptive budgets on HAIF, plus the seed's three set-ups (sequential fixed:10 on one thread,
+// HAIF adaptive, Bullet fixed:10), measuring ms/step and the DESIGN.md §5 errors. Writes
+// DIR/results.csv, DIR/report.md and DIR/pareto_<scene>.png.
 #include "app/cli.h"
 #include "app/commands.h"
+#include "scene/scene_loader.h"
 #include "tools/atomic_file.h"
-#include "tools/run_report.h"
-#include "tools/simulation.h"
+#include "tools/bench_plots.h"
+#include "tools/bench_report.h"
+#include "tools/bench_sweep.h"
 
 #include <tbb/info.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 
@@ -18,15 +23,19 @@ namespace haif {
 
 namespace {
 
-struct BenchRow {
-  std::string scene, setup;
-  uint32_t bodies = 0;
-  int threads = 1;
-  double median = 0, p95 = 0, missRate = 0, iterMean = 0, solveError = NAN, meanDrop = 0, maxPen = 0;
-};
+std::vector<std::string> splitList(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  for (std::string s; std::getline(ss, s, ',');)
+    if (!s.empty()) out.push_back(s);
+  return out;
+}
 
+// A scene given by name (stacks_100: scenes/stacks_100.json here or in the source tree) or by path.
 std::string findScene(const std::string& name) {
-  if (std::filesystem::exists(name)) return name;
+  if (std::filesystem::exists(name) || name.find('/') != std::string::npos ||
+      (name.size() > 5 && name.compare(name.size() - 5, 5, ".json") == 0))
+    return name;
   for (const std::string& dir : {std::string("scenes/"), std::string(HAIF_SOURCE_DIR) + "/scenes/"}) {
     const std::string p = dir + name + ".json";
     if (std::filesystem::exists(p)) return p;
@@ -34,106 +43,164 @@ std::string findScene(const std::string& name) {
   return "scenes/" + name + ".json";  // let the loader say it is missing
 }
 
-bool benchOne(const std::string& scenePath, const SolverSpec& spec, int threads, int steps, int errorEvery,
-              BenchRow& row, std::string& error) {
-  Simulation sim;
-  if (!makeSimulation(scenePath, spec, threads, sim, error)) return false;
-  sim.world->setSolveErrorInterval(errorEvery);
-  std::vector<StepStats> stats;
-  RunMetrics metrics;
-  metrics.begin(*sim.world, uint64_t(steps));
-  runSteps(sim, steps, stats, metrics);
-  std::vector<double> ms;
-  double miss = 0, it = 0, err = 0;
-  int errN = 0;
-  for (const StepStats& s : stats) {
-    ms.push_back(s.totalMs);
-    miss += s.deadlineMiss;
-    it += s.iterationsChosen;
-    if (!std::isnan(s.solveError)) {
-      err += s.solveError;
-      ++errN;
+// "--iterations 1,2,4": positive numbers within [lo, hi].
+bool parseNumbers(const std::string& option, const std::string& text, double lo, double hi, bool integers,
+                  std::vector<double>& out, std::string& error) {
+  out.clear();
+  for (const std::string& s : splitList(text)) {
+    char* end = nullptr;
+    const double v = std::strtod(s.c_str(), &end);
+    if (*end != '\0' || !(v >= lo && v <= hi) || (integers && v != double(long(v)))) {
+      error = "haif bench: " + option + ": '" + s + "' is not " + (integers ? "an integer" : "a number") +
+              " in [" + std::to_string(int(lo)) + ", " + std::to_string(int(hi)) + "]";
+      return false;
     }
+    if (std::find(out.begin(), out.end(), v) == out.end()) out.push_back(v);
   }
-  row.scene = sim.scene.name;
-  row.bodies = sim.world->bodyCount();
-  row.threads = threads;
-  row.median = quantile(ms, 0.5);
-  row.p95 = quantile(ms, 0.95);
-  row.missRate = spec.mode == "fixed" ? 0.0 : miss / double(stats.size());
-  row.iterMean = it / double(stats.size());
-  row.solveError = errN ? err / errN : NAN;
-  row.meanDrop = metrics.meanDrop(*sim.world);
-  row.maxPen = metrics.maxPenetration();
+  if (out.empty()) {
+    error = "haif bench: " + option + ": expected a comma-separated list";
+    return false;
+  }
   return true;
+}
+
+BenchPoint point(const std::string& engine, const std::string& mode, double param, int threads) {
+  BenchPoint p;
+  p.spec.engine = engine;
+  p.spec.solver.mode = mode;
+  if (mode == "fixed")
+    p.spec.solver.iterations = int(param);
+  else
+    p.spec.solver.budgetMs = param;
+  p.threads = engine == "bullet" ? 1 : threads;
+  return p;
+}
+
+bool samePoint(const BenchPoint& a, const BenchPoint& b) {
+  return a.spec.engine == b.spec.engine && a.spec.solver.mode == b.spec.solver.mode && a.threads == b.threads &&
+         a.spec.solver.iterations == b.spec.solver.iterations && a.spec.solver.budgetMs == b.spec.solver.budgetMs;
 }
 
 }  // namespace
 
 int commandBench(int argc, char** argv) {
-  CommandLine cl("bench", {"--scenes", "--steps", "--budget-ms", "--threads", "--out", "--error-every"}, {});
+  CommandLine cl("bench",
+                 {"--scenes", "--engines", "--steps", "--budget-ms", "--threads", "--out", "--error-every",
+                  "--iterations", "--budgets"},
+                 {"--quick"});
   std::string error;
-  int steps = 300, threads = int(tbb::info::default_concurrency()), errorEvery = 10;
-  double budget = 4.0;
-  if (!cl.parse(argc, argv, 2, error) || !cl.getInt("--steps", 1, 1000000, steps, error) ||
-      !cl.getInt("--threads", 1, 1024, threads, error) || !cl.getInt("--error-every", 0, 100000, errorEvery, error) ||
-      !cl.getDouble("--budget-ms", 0.01, 1e6, budget, error)) {
+  if (!cl.parse(argc, argv, 2, error)) {
     std::fprintf(stderr, "%s\n", error.c_str());
     return 2;
   }
+  const bool isQuick = cl.has("--quick");
+  // --quick: fewer scenes, steps and sweep points, to finish in a few minutes on a small machine.
+  int steps = isQuick ? 120 : 300, threads = int(tbb::info::default_concurrency()), errorEvery = isQuick ? 30 : 10;
+  double seedBudget = 4.0;
+  std::vector<double> iterations, budgets;
+  if (!cl.getInt("--steps", 1, 1000000, steps, error) || !cl.getInt("--threads", 1, 1024, threads, error) ||
+      !cl.getInt("--error-every", 0, 100000, errorEvery, error) ||
+      !cl.getDouble("--budget-ms", 0.01, 1e6, seedBudget, error) ||
+      !parseNumbers("--iterations", cl.get("--iterations", isQuick ? "1,4,16,64" : "1,2,4,8,16,32,64"), 1, 10000,
+                    true, iterations, error) ||
+      !parseNumbers("--budgets", cl.get("--budgets", isQuick ? "1,4" : "1,2,4,8"), 0.01, 1e6, false, budgets,
+                    error)) {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return 2;
+  }
+  std::vector<std::string> engines = splitList(cl.get("--engines", bulletAvailable() ? "haif,bullet" : "haif"));
+  for (const std::string& e : engines) {
+    if (e != "haif" && e != "bullet") {
+      std::fprintf(stderr, "haif bench: --engines: unknown engine '%s' (haif, bullet)\n", e.c_str());
+      return 2;
+    }
+    if (e == "bullet" && !bulletAvailable()) {
+      std::fprintf(stderr,
+                   "haif bench: --engines: bullet: this haif was built without Bullet (install libbullet-dev, "
+                   "then re-run cmake)\n");
+      return 2;
+    }
+  }
+  if (engines.empty()) {
+    std::fprintf(stderr, "haif bench: --engines: expected haif, bullet or haif,bullet\n");
+    return 2;
+  }
+  const std::string defaultScenes = isQuick ? "stacks_100,stacks_500,stacks_1000,pyramid_15"
+                                            : "stacks_100,stacks_500,stacks_1000,stacks_2000,pyramid_15,"
+                                              "large_pyramid,many_pyramids";
+  const std::vector<std::string> scenes = splitList(cl.get("--scenes", defaultScenes));
   const std::string outDir = cl.get("--out", "output/bench");
+  // Every scene must load before hours are spent on the others.
+  std::vector<std::string> paths;
+  for (const std::string& name : scenes) {
+    SceneDesc scene;
+    paths.push_back(findScene(name));
+    if (!loadSceneFile(paths.back(), scene, error)) {
+      std::fprintf(stderr, "%s\n", error.c_str());
+      return 1;
+    }
+  }
+  if (scenes.empty()) {
+    std::fprintf(stderr, "haif bench: --scenes: expected a comma-separated list of scene names or files\n");
+    return 2;
+  }
   if (!ensureWritableDir(outDir, error)) {
     std::fprintf(stderr, "%s\n", error.c_str());
     return 1;
   }
-  std::vector<std::string> scenes;
-  std::stringstream ss(cl.get("--scenes", "stacks_100,stacks_500,stacks_1000,stacks_2000"));
-  for (std::string s; std::getline(ss, s, ',');)
-    if (!s.empty()) scenes.push_back(s);
+  const bool haif = std::find(engines.begin(), engines.end(), "haif") != engines.end();
+  const bool bullet = std::find(engines.begin(), engines.end(), "bullet") != engines.end();
 
-  std::string csv = "scene,setup,bodies,threads,ms_per_step_median,ms_per_step_p95,fps,deadline_miss_rate,"
-                    "iterations_mean,solve_error_mean,mean_drop_m,max_penetration_m\n";
-  std::string md = "| scene | bodies | sequential ms/step | sequential FPS | HAIF ms/step | HAIF FPS | improvement |"
-                   " sequential solve error | HAIF solve error | HAIF iterations (mean) | HAIF deadline misses |\n"
-                   "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-  char line[512];
-  for (const std::string& name : scenes) {
-    const std::string path = findScene(name);
-    SolverSpec seq;
-    seq.mode = "fixed";
-    seq.iterations = 10;
-    SolverSpec hf;
-    hf.mode = "adaptive";
-    hf.budgetMs = budget;
-    BenchRow a, b;
-    if (!benchOne(path, seq, 1, steps, errorEvery, a, error) || !benchOne(path, hf, threads, steps, errorEvery, b, error)) {
-      std::fprintf(stderr, "%s\n", error.c_str());
-      return 1;
+  // The sweep, then the seed's set-ups that the sweep did not already run.
+  std::vector<BenchPoint> points;
+  auto add = [&](const BenchPoint& p) {
+    for (const BenchPoint& q : points)
+      if (samePoint(p, q)) return;
+    points.push_back(p);
+  };
+  for (const std::string& e : engines)
+    for (double i : iterations) add(point(e, "fixed", i, threads));
+  if (haif)
+    for (double b : budgets) add(point("haif", "adaptive", b, threads));
+  if (haif) add(point("haif", "fixed", 10, 1));
+  if (haif) add(point("haif", "adaptive", seedBudget, threads));
+  if (bullet) add(point("bullet", "fixed", 10, 1));
+
+  std::vector<BenchResult> rows;
+  for (const std::string& path : paths) {
+    for (const BenchPoint& p : points) {
+      BenchResult r;
+      if (!runBenchPoint(path, p, steps, errorEvery, r, error)) {
+        std::fprintf(stderr, "%s\n", error.c_str());
+        return 1;
+      }
+      char solveError[32] = "n/a";
+      if (!std::isnan(r.solveError)) std::snprintf(solveError, sizeof solveError, "%.4f", r.solveError);
+      std::printf("%-14s %-22s %2d thr  %9.3f ms/step (p95 %9.3f)  solve error %-7s  max pen %.4f m  "
+                  "mean drop %.4f m  jitter %.4f m/s%s\n",
+                  r.scene.c_str(), r.label.c_str(), r.threads, r.msMedian, r.msP95, solveError, r.maxPenetration,
+                  r.meanDrop, r.jitter, r.nan ? "  NaN!" : "");
+      std::fflush(stdout);
+      rows.push_back(std::move(r));
     }
-    a.setup = "sequential fixed:10";
-    b.setup = "haif adaptive:" + std::to_string(budget).substr(0, 4);
-    for (const BenchRow* r : {&a, &b}) {
-      std::snprintf(line, sizeof line, "%s,%s,%u,%d,%.4f,%.4f,%.1f,%.4f,%.2f,%.5f,%.5f,%.5f\n", r->scene.c_str(),
-                    r->setup.c_str(), r->bodies, r->threads, r->median, r->p95, 1000.0 / r->median, r->missRate,
-                    r->iterMean, r->solveError, r->meanDrop, r->maxPen);
-      csv += line;
-    }
-    std::snprintf(line, sizeof line, "| %s | %u | %.3f | %.0f | %.3f | %.0f | %.2fx | %.4f | %.4f | %.1f | %.1f%% |\n",
-                  a.scene.c_str(), a.bodies, a.median, 1000.0 / a.median, b.median, 1000.0 / b.median,
-                  a.median / b.median, a.solveError, b.solveError, b.iterMean, 100.0 * b.missRate);
-    md += line;
-    std::printf("%s", line);
-    std::fflush(stdout);
   }
-  md = "# HAIF bench: sequential against HAIF\n\nSequential: 1 thread, fixed 10 iterations. HAIF: " +
-       std::to_string(threads) + " threads, adaptive, " + std::to_string(budget) + " ms budget. " +
-       std::to_string(steps) + " steps per run; solve error (DESIGN.md §5) sampled every " +
-       std::to_string(errorEvery) + " steps.\n\n" + md;
-  if (!writeFileAtomic(outDir + "/bench.csv", csv, error) || !writeFileAtomic(outDir + "/bench.md", md, error)) {
+
+  BenchReportInfo info;
+  info.steps = steps;
+  info.threads = threads;
+  info.errorEvery = errorEvery;
+  info.seedBudgetMs = seedBudget;
+  info.quick = isQuick;
+  info.engines = engines;
+  if (!benchPlotsAvailable()) info.plotsNote = "this haif was built without the renderer (HAIF_BUILD_RENDER=OFF)";
+  if (!writeBenchPlots(outDir, rows, info.plots, error) ||
+      !writeFileAtomic(outDir + "/results.csv", benchResultsCsv(rows), error) ||
+      !writeFileAtomic(outDir + "/report.md", benchReportMarkdown(rows, info), error)) {
     std::fprintf(stderr, "%s\n", error.c_str());
     return 1;
   }
-  std::printf("wrote %s/bench.csv and %s/bench.md\n", outDir.c_str(), outDir.c_str());
+  std::printf("wrote %s/results.csv, %s/report.md and %zu plot(s)\n", outDir.c_str(), outDir.c_str(),
+              info.plots.size());
   return 0;
 }
 

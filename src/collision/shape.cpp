@@ -70,6 +70,15 @@ MassProperties computeMassProperties(const Shape& s, float density) {
   return mp;
 }
 
+MassProperties bodyMassProperties(const Shape& s, float density, float mass) {
+  const MassProperties unit = computeMassProperties(s, 1.0f);
+  MassProperties mp;
+  mp.mass = mass > 0.0f ? mass : computeMassProperties(s, density).mass;
+  // Inertia scales with mass for a given shape: take the unit-density tensor and rescale.
+  mp.inertia = unit.mass > 0.0f ? Mat3(unit.inertia * (mp.mass / unit.mass)) : Mat3(Mat3::Identity() * mp.mass);
+  return mp;
+}
+
 Aabb computeAabb(const Shape& s, const Transform& xf) {
   Aabb b;
   switch (s.type) {

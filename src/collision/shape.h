@@ -73,6 +73,9 @@ struct MassProperties {
   Mat3 inertia = Mat3::Zero();
 };
 MassProperties computeMassProperties(const Shape& s, float density);
+/// Mass properties of a dynamic body: `mass` > 0 overrides the density, and the inertia keeps the
+/// shape's distribution scaled to that mass (identity times mass for a shape without volume).
+MassProperties bodyMassProperties(const Shape& s, float density, float mass);
 
 /// World-space bounding box of a shape at a transform (planes and meshes give their finite bounds;
 /// a plane gives a huge box).

@@ -64,10 +64,9 @@ uint32_t World::addBody(const BodyDef& def) {
   Mat3 inertia = Mat3::Zero();
   const MassProperties unit = computeMassProperties(def.shape, 1.0f);
   if (def.kind == BodyKind::Dynamic) {
-    const MassProperties mp = computeMassProperties(def.shape, def.density);
-    mass = def.mass > 0.0f ? def.mass : mp.mass;
-    // Inertia scales with mass for a given shape: take the unit-density tensor and rescale.
-    inertia = unit.mass > 0.0f ? Mat3(unit.inertia * (mass / unit.mass)) : Mat3::Identity() * mass;
+    const MassProperties mp = bodyMassProperties(def.shape, def.density, def.mass);
+    mass = mp.mass;
+    inertia = mp.inertia;
   }
   const uint32_t id = bodies_.add(def.kind, def.xf, mass, inertia);
   bodies_.v[id] = def.linearVelocity;

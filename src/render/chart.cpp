@@ -57,7 +57,8 @@ float ChartGeometry::yToPixel(double y) const {
 }
 
 float ChartGeometry::xToPixel(double x) const {
-  return static_cast<float>(left + (x - xLo) / (xHi - xLo) * (right - left));
+  const double v = logX ? std::log10(std::max(x, 1e-300)) : x;
+  return static_cast<float>(left + (v - xLo) / (xHi - xLo) * (right - left));
 }
 
 ChartGeometry drawChart(Canvas& canvas, TextRenderer& text, int x0, int y0, int x1, int y1,
@@ -75,6 +76,22 @@ ChartGeometry drawChart(Canvas& canvas, TextRenderer& text, int x0, int y0, int 
   g.logY = spec.logY;
   g.xLo = spec.xStart;
   g.xHi = spec.xStart + spec.xStep * static_cast<double>(n > 1 ? n - 1 : 1);
+  // Series placed at given x set the x range themselves.
+  double xMin = INFINITY, xMax = -INFINITY;
+  for (const auto& s : spec.series)
+    for (size_t i = 0; i < s.x.size() && i < s.values.size(); ++i)
+      if (std::isfinite(s.x[i]) && (!spec.logX || s.x[i] > 0.f) && std::isfinite(s.values[i]))
+        xMin = std::min(xMin, double(s.x[i])), xMax = std::max(xMax, double(s.x[i]));
+  const bool placed = xMin <= xMax;
+  g.logX = spec.logX && placed;
+  if (g.logX) {
+    g.xLo = std::floor(std::log10(xMin));
+    g.xHi = std::ceil(std::log10(xMax));
+    if (g.xHi <= g.xLo) g.xHi = g.xLo + 1.0;
+  } else if (placed) {
+    const double pad = xMax > xMin ? 0.05 * (xMax - xMin) : 1.0;
+    g.xLo = xMin - pad, g.xHi = xMax + pad;
+  }
 
   double lo = INFINITY, hi = -INFINITY;
   auto take = [&](double v) {
@@ -136,7 +153,22 @@ ChartGeometry drawChart(Canvas& canvas, TextRenderer& text, int x0, int y0, int 
     text.draw(canvas, g.left - 6.f - text.measure(t.label, fs), y + text.ascent(fs) * 0.5f, t.label,
               fs, style.text);
   }
-  if (!style.compact) {
+  if (!style.compact && g.logX) {
+    // Decades labelled; 2 and 5 labelled too when there are few decades; 2..9 as light grid.
+    const int decades = static_cast<int>(g.xHi - g.xLo);
+    for (int e = static_cast<int>(g.xLo); e <= static_cast<int>(g.xHi); ++e)
+      for (int m = 1; m <= 9; ++m) {
+        const double v = m * std::pow(10.0, e);
+        if (std::log10(v) > g.xHi + 1e-9) break;
+        const float x = g.xToPixel(v);
+        canvas.line(x, g.top, x, g.bottom, m == 1 ? 1.f : 0.6f, style.grid);
+        if (m == 1 || (decades <= 2 && (m == 2 || m == 5))) {
+          const std::string label = m == 1 ? formatDecade(e) : formatTick(v, std::pow(10.0, e));
+          text.draw(canvas, x - text.measure(label, fs) * 0.5f, g.bottom + 6.f + text.ascent(fs), label, fs,
+                    style.text);
+        }
+      }
+  } else if (!style.compact) {
     const double xs = niceStep(g.xHi - g.xLo, 8);
     for (double v = std::ceil(g.xLo / xs - 1e-9) * xs; v <= g.xHi + xs * 1e-6; v += xs) {
       const float x = g.xToPixel(v);
@@ -169,8 +201,40 @@ ChartGeometry drawChart(Canvas& canvas, TextRenderer& text, int x0, int y0, int 
     else
       canvas.line(g.left, y, g.right, y, 1.5f, h.color);
   }
+  auto marker = [&](float x, float y, const ChartSeries& s) {
+    if (s.marker <= 0.f) return;
+    if (!s.hollow) {
+      canvas.line(x, y, x, y, s.marker, s.color);
+      return;
+    }
+    const float r = 0.5f * s.marker;
+    const int segments = 16;
+    for (int k = 0; k < segments; ++k) {
+      const float a0 = 2.f * 3.14159265f * k / segments, a1 = 2.f * 3.14159265f * (k + 1) / segments;
+      canvas.line(x + r * std::cos(a0), y + r * std::sin(a0), x + r * std::cos(a1), y + r * std::sin(a1), 1.6f,
+                  s.color);
+    }
+  };
+  auto valid = [&](float x, float y) {
+    return std::isfinite(x) && std::isfinite(y) && (!g.logX || x > 0.f) && (!spec.logY || y > 0.f);
+  };
   for (const auto& s : spec.series) {
-    if (s.style != ChartSeries::Style::Line) continue;
+    if (s.style != ChartSeries::Style::Line || s.x.empty()) continue;
+    const size_t m = std::min(s.x.size(), s.values.size());
+    for (size_t i = 0; s.width > 0.f && i + 1 < m; ++i) {
+      if (!valid(s.x[i], s.values[i]) || !valid(s.x[i + 1], s.values[i + 1])) continue;
+      const float xa = g.xToPixel(s.x[i]), ya = g.yToPixel(s.values[i]);
+      const float xb = g.xToPixel(s.x[i + 1]), yb = g.yToPixel(s.values[i + 1]);
+      if (s.dashed)
+        canvas.dashedLine(xa, ya, xb, yb, s.width, 6.f, 4.f, s.color);
+      else
+        canvas.line(xa, ya, xb, yb, s.width, s.color);
+    }
+    for (size_t i = 0; i < m; ++i)
+      if (valid(s.x[i], s.values[i])) marker(g.xToPixel(s.x[i]), g.yToPixel(s.values[i]), s);
+  }
+  for (const auto& s : spec.series) {
+    if (s.style != ChartSeries::Style::Line || !s.x.empty()) continue;
     const size_t m = s.values.size();
     auto X = [&](size_t i) { return g.xToPixel(spec.xStart + spec.xStep * static_cast<double>(i)); };
     if (static_cast<double>(m) > 2.0 * (g.right - g.left)) {
@@ -222,13 +286,17 @@ ChartGeometry drawChart(Canvas& canvas, TextRenderer& text, int x0, int y0, int 
   struct Entry {
     std::string name;
     Rgba color;
-    int kind;  // 0 line, 1 area, 2 dashed
+    int kind;                         // 0 line, 1 area, 2 dashed, 3 no line (markers only)
+    const ChartSeries* series = nullptr;  // for its marker
   };
   std::vector<Entry> entries;
-  for (const auto& s : spec.series)
-    if (!s.name.empty()) entries.push_back({s.name, s.color, s.style == ChartSeries::Style::Line ? 0 : 1});
+  for (const auto& s : spec.series) {
+    if (s.name.empty()) continue;
+    const int kind = s.style != ChartSeries::Style::Line ? 1 : s.width <= 0.f ? 3 : s.dashed ? 2 : 0;
+    entries.push_back({s.name, s.color, kind, &s});
+  }
   for (const auto& h : spec.hlines)
-    if (!h.name.empty()) entries.push_back({h.name, h.color, h.dashed ? 2 : 0});
+    if (!h.name.empty()) entries.push_back({h.name, h.color, h.dashed ? 2 : 0, nullptr});
   if (!entries.empty()) {
     const float sw = fs * 1.6f, gap = fs * 0.5f;
     auto swatch = [&](float x, float yMid, const Entry& e) {
@@ -236,8 +304,9 @@ ChartGeometry drawChart(Canvas& canvas, TextRenderer& text, int x0, int y0, int 
         canvas.fillRect(x, yMid - fs * 0.35f, x + sw, yMid + fs * 0.35f, e.color);
       else if (e.kind == 2)
         canvas.dashedLine(x, yMid, x + sw, yMid, 2.f, 5.f, 3.f, e.color);
-      else
+      else if (e.kind == 0)
         canvas.line(x, yMid, x + sw, yMid, 2.f, e.color);
+      if (e.series) marker(x + sw * 0.5f, yMid, *e.series);
     };
     if (style.compact) {
       float x = titleEnd + fs;
@@ -251,7 +320,31 @@ ChartGeometry drawChart(Canvas& canvas, TextRenderer& text, int x0, int y0, int 
       for (const auto& e : entries) w = std::max(w, text.measure(e.name, fs));
       const float lineH = fs * 1.45f;
       const float bw = sw + 8.f + w + 2.f * gap, bh = lineH * entries.size() + gap;
-      const float bx = g.right - bw - 8.f, by = g.top + 8.f;
+      // Corner boxes: top right, top left, bottom left, bottom right.
+      const float cx[4] = {g.right - bw - 8.f, g.left + 8.f, g.left + 8.f, g.right - bw - 8.f};
+      const float cy[4] = {g.top + 8.f, g.top + 8.f, g.bottom - bh - 8.f, g.bottom - bh - 8.f};
+      int corner = static_cast<int>(spec.legend);
+      if (spec.legend == LegendCorner::Best) {
+        // Count the placed points and line samples each corner box would cover; the first least wins.
+        int hidden[4] = {0, 0, 0, 0};
+        auto cover = [&](float px, float py) {
+          for (int k = 0; k < 4; ++k) hidden[k] += px >= cx[k] && px <= cx[k] + bw && py >= cy[k] && py <= cy[k] + bh;
+        };
+        for (const auto& s : spec.series) {
+          const size_t m = std::min(s.x.size(), s.values.size());
+          for (size_t i = 0; i < m; ++i) {
+            if (!valid(s.x[i], s.values[i])) continue;
+            const float xa = g.xToPixel(s.x[i]), ya = g.yToPixel(s.values[i]);
+            cover(xa, ya);
+            cover(xa, ya);  // a point weighs more than a piece of line
+            if (i + 1 < m && s.width > 0.f && valid(s.x[i + 1], s.values[i + 1]))
+              for (int t = 1; t < 8; ++t)
+                cover(xa + (g.xToPixel(s.x[i + 1]) - xa) * t / 8.f, ya + (g.yToPixel(s.values[i + 1]) - ya) * t / 8.f);
+          }
+        }
+        corner = static_cast<int>(std::min_element(hidden, hidden + 4) - hidden);
+      }
+      const float bx = cx[corner], by = cy[corner];
       canvas.fillRect(bx, by, bx + bw, by + bh, Rgba{255, 255, 255, 225});
       canvas.line(bx, by, bx + bw, by, 1.f, style.grid);
       canvas.line(bx, by + bh, bx + bw, by + bh, 1.f, style.grid);

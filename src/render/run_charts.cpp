@@ -19,18 +19,7 @@ std::string titleOf(const RunSeries& run, const std::string& what) {
 
 bool renderAndWrite(const std::string& path, const ChartSpec& spec, const RunChartOptions& options,
                     std::string* error) {
-  if (options.width < 64 || options.height < 64) {
-    if (error) *error = "chart '" + path + "': image too small";
-    return false;
-  }
-  auto text = TextRenderer::create(options.fontPath, error);
-  if (!text) return false;
-  std::vector<uint8_t> rgba(static_cast<size_t>(options.width) * options.height * 4);
-  Canvas canvas(rgba.data(), options.width, options.height);
-  ChartStyle style;
-  style.fontSize = std::max(11, options.height / 40);
-  drawChart(canvas, *text, 0, 0, options.width, options.height, spec, style);
-  return writePng(path, options.width, options.height, rgba.data(), error);
+  return writeChartGrid(path, {spec}, 1, options, error);
 }
 
 }  // namespace
@@ -84,6 +73,28 @@ bool writeErrorChart(const std::string& path, const RunSeries& run, const RunCha
   if (run.errorThreshold > 0.f)
     spec.hlines.push_back({"threshold", run.errorThreshold, chart_colors::kBudget, true});
   return renderAndWrite(path, spec, options, error);
+}
+
+bool writeChartGrid(const std::string& path, const std::vector<ChartSpec>& panels, int columns,
+                    const RunChartOptions& options, std::string* error) {
+  if (options.width < 64 || options.height < 64 || panels.empty() || columns < 1) {
+    if (error) *error = "chart '" + path + "': image too small or nothing to draw";
+    return false;
+  }
+  auto text = TextRenderer::create(options.fontPath, error);
+  if (!text) return false;
+  std::vector<uint8_t> rgba(static_cast<size_t>(options.width) * options.height * 4);
+  Canvas canvas(rgba.data(), options.width, options.height);
+  const int cols = std::min<int>(columns, static_cast<int>(panels.size()));
+  const int rows = static_cast<int>((panels.size() + cols - 1) / cols);
+  ChartStyle style;
+  style.fontSize = std::max(11, options.height / rows / 40);
+  for (size_t k = 0; k < panels.size(); ++k) {
+    const int c = static_cast<int>(k) % cols, r = static_cast<int>(k) / cols;
+    drawChart(canvas, *text, options.width * c / cols, options.height * r / rows, options.width * (c + 1) / cols,
+              options.height * (r + 1) / rows, panels[k], style);
+  }
+  return writePng(path, options.width, options.height, rgba.data(), error);
 }
 
 bool writeRunCharts(const std::string& dir, const RunSeries& run, const RunChartOptions& options,

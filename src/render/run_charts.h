@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "render/chart.h"
 #include "render/renderer.h"
 
 namespace haif::render {
@@ -42,6 +43,10 @@ bool writeStepTimeChart(const std::string& path, const RunSeries& run, const Run
 /// the error series; log y axis when it spans more than a decade and a half.
 bool writeErrorChart(const std::string& path, const RunSeries& run, const RunChartOptions& options,
                      std::string* error);
+/// Charts side by side in one PNG: `columns` per row, each panel width/columns wide and
+/// height/rows tall (the benchmark's Pareto plots use it).
+bool writeChartGrid(const std::string& path, const std::vector<ChartSpec>& panels, int columns,
+                    const RunChartOptions& options, std::string* error);
 /// All three into dir/iterations.png, dir/step_time.png, dir/error.png (error.png only if
 /// run.error is non-empty). Stops at the first failure.
 bool writeRunCharts(const std::string& dir, const RunSeries& run, const RunChartOptions& options,

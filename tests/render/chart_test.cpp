@@ -68,6 +68,67 @@ TEST(Chart, LegendTextIsDrawnInsideThePlot) {
   EXPECT_EQ(elsewhere, 0);
 }
 
+TEST(Chart, PointsAtGivenXOnLogAxesLandOnTheirDecades) {
+  auto text = font();
+  ASSERT_TRUE(text);
+  const int w = 500, h = 400;
+  std::vector<uint8_t> px(static_cast<size_t>(w) * h * 4);
+  Canvas canvas(px.data(), w, h);
+  ChartSpec spec;
+  spec.logX = spec.logY = true;
+  spec.legend = LegendCorner::BottomLeft;
+  ChartSeries s{"curve", {100.f, 10.f, 1.f}, Rgba{0, 0, 255, 255}, ChartSeries::Style::Line, 0.f};
+  s.x = {0.1f, 1.f, 10.f};
+  s.marker = 9.f;
+  spec.series.push_back(s);
+  const ChartGeometry g = drawChart(canvas, *text, 0, 0, w, h, spec, ChartStyle{});
+  ASSERT_TRUE(g.logX && g.logY);
+  // Decades are evenly spaced on both axes: x 0.1..10, y 1..100.
+  EXPECT_NEAR(g.xToPixel(1.0) - g.xToPixel(0.1), g.xToPixel(10.0) - g.xToPixel(1.0), 0.01f);
+  EXPECT_NEAR(g.xToPixel(0.1), g.left, 0.5f);
+  EXPECT_NEAR(g.xToPixel(10.0), g.right, 0.5f);
+  EXPECT_NEAR(g.yToPixel(100.0), g.top, 0.5f);
+  // A blue dot at each point (markers only: width 0), and no blue half-way between two points.
+  auto blue = [&](float x, float y) {
+    const auto p = test::at(px, w, static_cast<int>(x), static_cast<int>(y));
+    return p.b > 200 && p.r < 80 && p.g < 80;
+  };
+  EXPECT_TRUE(blue(g.xToPixel(0.1) + 2.f, g.yToPixel(100.0) + 2.f));  // corners: inside the plot, off the axes
+  EXPECT_TRUE(blue(g.xToPixel(1.0), g.yToPixel(10.0)));
+  EXPECT_TRUE(blue(g.xToPixel(10.0) - 3.f, g.yToPixel(1.0) - 3.f));
+  EXPECT_FALSE(blue(g.xToPixel(std::sqrt(10.0)), g.yToPixel(std::sqrt(10.0))));
+}
+
+TEST(Chart, BestLegendCornerLeavesThePointsVisible) {
+  auto text = font();
+  ASSERT_TRUE(text);
+  const int w = 500, h = 400;
+  // Points along the top and right edges: only the bottom-left corner is free.
+  ChartSpec spec;
+  ChartSeries s{"", {}, Rgba{0, 0, 255, 255}, ChartSeries::Style::Line, 1.f};
+  for (int i = 0; i <= 5; ++i) s.x.push_back(2.f * i), s.values.push_back(10.f);
+  for (int i = 4; i >= 0; --i) s.x.push_back(10.f), s.values.push_back(2.f * i);
+  s.marker = 6.f;
+  spec.series.push_back(s);
+  spec.legend = LegendCorner::Best;
+  spec.yMax = 10.5f;  // the top row just inside the plot, where a top-corner legend would cover it
+  std::vector<uint8_t> plain(static_cast<size_t>(w) * h * 4), legend(plain.size());
+  Canvas c1(plain.data(), w, h), c2(legend.data(), w, h);
+  drawChart(c1, *text, 0, 0, w, h, spec, ChartStyle{});
+  spec.series[0].name = "a long legend entry";
+  const ChartGeometry g = drawChart(c2, *text, 0, 0, w, h, spec, ChartStyle{});
+  int inBottomLeft = 0, elsewhere = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const auto a = test::at(plain, w, x, y), b = test::at(legend, w, x, y);
+      if (a.r == b.r && a.g == b.g && a.b == b.b) continue;
+      const bool bottomLeft = x < (g.left + g.right) / 2 && y > (g.top + g.bottom) / 2;
+      (bottomLeft ? inBottomLeft : elsewhere)++;
+    }
+  EXPECT_GT(inBottomLeft, 100);
+  EXPECT_EQ(elsewhere, 0);
+}
+
 TEST(Chart, TextRendererDrawsGlyphsAndMeasures) {
   auto text = font();
   ASSERT_TRUE(text);

@@ -1,0 +1,57 @@
+// The benchmark's unit of work: one engine and solver set-up run on one scene for a number of
+// steps, measuring its cost (ms per step) and its error (DESIGN.md §5) the same way for every engine.
+#pragma once
+
+#include "tools/engine_spec.h"
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace haif {
+
+/// What to run.
+struct BenchPoint {
+  EngineSpec spec;  ///< engine, mode (fixed / adaptive) and its parameter
+  int threads = 1;  ///< HAIF's worker threads (Bullet always runs on one)
+};
+
+/// What one run cost and how wrong it was.
+struct BenchResult {
+  std::string scene;
+  uint32_t bodies = 0;
+  std::string engine, mode;  ///< "haif" / "bullet"; "fixed" / "adaptive"
+  double param = 0;          ///< iterations (fixed) or budget in ms (adaptive)
+  std::string label;         ///< e.g. "haif adaptive:4"
+  int threads = 1, steps = 0;
+  double msMedian = 0, msP95 = 0;
+  /// Median process CPU time of a step (all threads, ms): the work, which other programs on a busy
+  /// machine do not inflate the way they inflate wall time; equals ms/step for one thread on an idle machine.
+  double cpuMsMedian = 0;
+  double iterationsMean = 0, missRate = 0;
+  double solveError = NAN;   ///< mean DESIGN.md §5 solve error over the sampled steps; NaN: not available
+  double maxPenetration = 0, rmsPenetration = 0, maxPenetrationFraction = 0;
+  double meanDrop = 0, maxDrop = 0, jitter = 0;
+  bool nan = false;
+  uint64_t stateHash = 0;
+};
+
+/// Runs `point` on the scene at `scenePath` for `steps` steps, sampling the solve error every
+/// `errorEvery` steps where the engine can (0: never). One error line on failure.
+bool runBenchPoint(const std::string& scenePath, const BenchPoint& point, int steps, int errorEvery,
+                   BenchResult& out, std::string& error);
+
+/// An error metric the report tabulates and plots against ms/step.
+struct BenchMetric {
+  const char* key;    ///< file-name and column friendly, e.g. "max_penetration"
+  const char* title;  ///< e.g. "max penetration (m)"
+  double (*get)(const BenchResult&);
+};
+/// Solve error, max penetration, mean drop and jitter, in that order.
+const std::vector<BenchMetric>& benchErrorMetrics();
+
+/// Curve a result belongs to in the plots: engine, mode and thread count, e.g. "haif adaptive, 2 threads".
+std::string benchCurveName(const BenchResult& r);
+
+}  // namespace haif

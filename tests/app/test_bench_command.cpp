@@ -1,0 +1,204 @@
+// haif bench through the binary: a tiny sweep writes results.csv with every column and sane values
+// (one row per scene, engine and set-up), report.md with the seed's table, and the Pareto plot;
+// bad options and missing scenes fail with one clear line and no output. Needs the haif target built.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int exitCode = -1;
+  std::string out, err;
+};
+
+std::string readFile(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream ss(line);
+  for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+  return cells;
+}
+
+#ifdef HAIF_HAVE_BULLET
+constexpr bool kBullet = true;
+#else
+constexpr bool kBullet = false;
+#endif
+
+class BenchCommand : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("haif_bench_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    ASSERT_TRUE(fs::exists(HAIF_BINARY)) << "build the haif target first: " << HAIF_BINARY;
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  Result haif(const std::string& args) {
+    const std::string cmd = std::string("'") + HAIF_BINARY + "' " + args + " >" + (dir_ / "stdout.txt").string() +
+                            " 2>" + (dir_ / "stderr.txt").string();
+    const int status = std::system(cmd.c_str());
+    Result r;
+    r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+    r.out = readFile(dir_ / "stdout.txt");
+    r.err = readFile(dir_ / "stderr.txt");
+    return r;
+  }
+
+  void expectCleanFailure(const Result& r, const fs::path& out, std::initializer_list<std::string> needles) {
+    EXPECT_NE(r.exitCode, 0) << r.err;
+    EXPECT_LT(r.exitCode, 128) << "crashed: " << r.err;
+    for (const std::string& n : needles)
+      EXPECT_NE(r.err.find(n), std::string::npos) << "missing '" << n << "' in: " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one clear error, got: " << r.err;
+    EXPECT_FALSE(fs::exists(out / "results.csv")) << "partial output written";
+    EXPECT_FALSE(fs::exists(out / "report.md")) << "partial output written";
+  }
+
+  fs::path dir_;
+};
+
+const std::string kStacks = std::string(HAIF_SOURCE_DIR) + "/scenes/stacks_100.json";
+
+TEST_F(BenchCommand, TinySweepWritesResultsReportAndPlot) {
+  const fs::path out = dir_ / "out";
+  const std::string engines = kBullet ? "haif,bullet" : "haif";
+  const Result r = haif("bench --scenes '" + kStacks + "' --engines " + engines +
+                        " --steps 40 --iterations 2,10 --budgets 3 --threads 2 --error-every 10 --out '" +
+                        out.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+
+  const std::string csv = readFile(out / "results.csv");
+  std::stringstream lines(csv);
+  std::string headerLine;
+  ASSERT_TRUE(std::getline(lines, headerLine));
+  const std::vector<std::string> header = split(headerLine);
+  for (const char* col : {"scene", "bodies", "engine", "mode", "param", "label", "threads", "steps",
+                          "ms_per_step_median", "ms_per_step_p95", "cpu_ms_per_step_median", "fps",
+                          "iterations_mean", "deadline_miss_rate", "solve_error_mean", "max_penetration_m",
+                          "rms_penetration_m", "max_penetration_fraction", "mean_drop_m", "max_drop_m",
+                          "jitter_rms_velocity_m_s", "nan_detected", "state_hash"})
+    EXPECT_NE(std::find(header.begin(), header.end(), col), header.end()) << "results.csv lacks " << col;
+  auto col = [&](const std::vector<std::string>& row, const std::string& name) {
+    const size_t i = size_t(std::find(header.begin(), header.end(), name) - header.begin());
+    return i < row.size() ? row[i] : std::string("?");
+  };
+  auto num = [&](const std::vector<std::string>& row, const std::string& name) { return std::stod(col(row, name)); };
+
+  std::map<std::string, std::vector<std::string>> byRun;  // "engine mode param threads" -> row
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty()) continue;
+    const std::vector<std::string> row = split(line);
+    ASSERT_EQ(row.size(), header.size()) << line;
+    byRun[col(row, "engine") + " " + col(row, "mode") + " " + col(row, "param") + " " + col(row, "threads")] = row;
+    EXPECT_EQ(col(row, "scene"), "stacks_100");
+    EXPECT_EQ(num(row, "bodies"), 101);
+    EXPECT_EQ(num(row, "steps"), 40);
+    EXPECT_GT(num(row, "ms_per_step_median"), 0.0);
+    EXPECT_LE(num(row, "ms_per_step_median"), num(row, "ms_per_step_p95"));
+    EXPECT_GT(num(row, "cpu_ms_per_step_median"), 0.0);
+    EXPECT_EQ(col(row, "nan_detected"), "0");
+    EXPECT_EQ(col(row, "state_hash").size(), 16u);
+    // Penetration and drop from the engine's own contacts and positions: a standing stack stays
+    // standing (drops are the 1 cm gaps closing, plus the solver's give).
+    EXPECT_GE(num(row, "max_penetration_m"), num(row, "rms_penetration_m"));
+    EXPECT_GE(num(row, "rms_penetration_m"), 0.0);
+    EXPECT_LT(num(row, "max_penetration_m"), 0.5);
+    EXPECT_GT(num(row, "mean_drop_m"), 0.0);
+    EXPECT_LE(num(row, "mean_drop_m"), num(row, "max_drop_m"));
+    EXPECT_LT(num(row, "max_drop_m"), 1.5);
+    EXPECT_GE(num(row, "jitter_rms_velocity_m_s"), 0.0);
+    if (col(row, "mode") == "fixed") {
+      EXPECT_EQ(num(row, "iterations_mean"), num(row, "param"));
+    }
+    if (col(row, "engine") == "bullet") {
+      EXPECT_EQ(col(row, "solve_error_mean"), "n/a") << "Bullet's solve error cannot be measured";
+      EXPECT_EQ(num(row, "threads"), 1);
+    } else {
+      EXPECT_GE(num(row, "solve_error_mean"), 0.0);
+      EXPECT_LT(num(row, "solve_error_mean"), 10.0);
+    }
+  }
+  // The sweep (fixed 2 and 10 per engine, adaptive 3) and the seed's set-ups (sequential fixed:10 on
+  // one thread, adaptive 4, Bullet fixed:10 already in the sweep).
+  std::vector<std::string> expected = {"haif fixed 2 2", "haif fixed 10 2", "haif adaptive 3 2", "haif fixed 10 1",
+                                       "haif adaptive 4 2"};
+  if (kBullet) expected.insert(expected.end(), {"bullet fixed 2 1", "bullet fixed 10 1"});
+  EXPECT_EQ(byRun.size(), expected.size());
+  for (const std::string& e : expected) EXPECT_TRUE(byRun.count(e)) << "no row for " << e;
+  // Fixed iterations give the same state on one thread or two.
+  if (byRun.count("haif fixed 10 1") && byRun.count("haif fixed 10 2")) {
+    EXPECT_EQ(col(byRun["haif fixed 10 1"], "state_hash"), col(byRun["haif fixed 10 2"], "state_hash"));
+  }
+  if (kBullet) {
+    // Ten iterations hold the stacks better than two, in Bullet as in HAIF.
+    EXPECT_LT(num(byRun["bullet fixed 10 1"], "max_penetration_m"),
+              num(byRun["bullet fixed 2 1"], "max_penetration_m"));
+    EXPECT_LT(num(byRun["haif fixed 10 2"], "max_penetration_m"), num(byRun["haif fixed 2 2"], "max_penetration_m"));
+  }
+
+  const std::string md = readFile(out / "report.md");
+  EXPECT_NE(md.find("The seed's table"), std::string::npos);
+  EXPECT_NE(md.find("| stacks_100 | 101 |"), std::string::npos);
+  EXPECT_NE(md.find("Pareto"), std::string::npos);
+  if (kBullet) {
+    EXPECT_NE(md.find("n/a"), std::string::npos);
+  }
+#ifdef HAIF_HAVE_RENDER
+  ASSERT_TRUE(fs::exists(out / "pareto_stacks_100.png"));
+  EXPECT_GT(fs::file_size(out / "pareto_stacks_100.png"), 10000u);
+  EXPECT_NE(md.find("pareto_stacks_100.png"), std::string::npos);
+#endif
+  for (const auto& e : fs::directory_iterator(out))
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
+}
+
+TEST_F(BenchCommand, UnknownEngineIsRefused) {
+  const fs::path out = dir_ / "out";
+  const std::string tail = " --steps 5 --out '" + out.string() + "'";
+  expectCleanFailure(haif("bench --scenes '" + kStacks + "' --engines haif,physx" + tail), out,
+                     {"--engines", "physx", "haif, bullet"});
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(BenchCommand, BulletWithoutBulletSaysSo) {
+  if (kBullet) GTEST_SKIP() << "this build has Bullet";
+  const fs::path out = dir_ / "out";
+  const std::string tail = " --steps 5 --out '" + out.string() + "'";
+  expectCleanFailure(haif("bench --scenes '" + kStacks + "' --engines bullet" + tail), out,
+                     {"bullet", "without Bullet"});
+}
+
+TEST_F(BenchCommand, BadListsAndMissingScenes) {
+  const fs::path out = dir_ / "out";
+  const std::string tail = " --steps 5 --out '" + out.string() + "'";
+  expectCleanFailure(haif("bench --scenes '" + kStacks + "' --iterations 0,4" + tail), out, {"--iterations", "'0'"});
+  expectCleanFailure(haif("bench --scenes '" + kStacks + "' --iterations 2.5" + tail), out, {"--iterations"});
+  expectCleanFailure(haif("bench --scenes '" + kStacks + "' --budgets fast" + tail), out, {"--budgets", "fast"});
+  expectCleanFailure(haif("bench --scenes '" + kStacks + "' --steps 0 --out '" + out.string() + "'"), out, {"--steps"});
+  const std::string missing = (dir_ / "no_such_scene.json").string();
+  expectCleanFailure(haif("bench --scenes '" + missing + "'" + tail), out, {missing});
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
