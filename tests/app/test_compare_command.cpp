@@ -111,7 +111,9 @@ TEST_F(CompareCommand, WithoutFfmpegPngFramesAndMasksAreWrittenAndDiffClean) {
 
 TEST_F(CompareCommand, BadSpecsAndMissingOptionsAreClearErrors) {
   const std::string out = " --frames 2 --width 256 --height 200 --out '" + (dir_ / "x.mp4").string() + "'";
+#ifndef HAIF_HAVE_BULLET
   expectOneLineError(compare("--left fixed:10 --right bullet:10" + out), {"bullet:10", "not built with Bullet"});
+#endif
   expectOneLineError(compare("--left fixed:10 --right bullet:abc" + out), {"bullet needs an iteration count"});
   expectOneLineError(compare("--left fixed:x --right fixed:2" + out), {"left side", "fixed:x", "fixed:10"});
   expectOneLineError(compare("--left turbo:3 --right fixed:2" + out), {"unknown mode 'turbo'", "bullet"});
@@ -122,6 +124,17 @@ TEST_F(CompareCommand, BadSpecsAndMissingOptionsAreClearErrors) {
       {"nope.json"});
   EXPECT_FALSE(fs::exists(dir_ / "x.mp4"));
 }
+
+#ifdef HAIF_HAVE_BULLET
+// With the Bullet adapter built, bullet:N is a side like any other.
+TEST_F(CompareCommand, BulletSideRuns) {
+  const fs::path video = dir_ / "vs_bullet.mp4";
+  const auto r = compare("--left fixed:10 --right bullet:10 --frames 3 --width 256 --height 200 --out '" +
+                         video.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(fs::exists(video) || fs::exists(dir_ / "vs_bullet_frames")) << r.err;
+}
+#endif
 
 }  // namespace
 }  // namespace haif
