@@ -4,6 +4,7 @@
 
 #include "collision/shape.h"
 #include "core/math.h"
+#include "dynamics/joint.h"
 
 #include <cstdint>
 #include <string>
@@ -57,6 +58,22 @@ struct WaterDesc {
   float angularDrag = 0.5f;  ///< 1/s
 };
 
+/// A joint as the scene file gives it. The joint's rest pose is the bodies' initial pose: fixed and
+/// slider joints keep the relative orientation they start with, hinge and twist angles count from it.
+struct JointDesc {
+  std::string name;
+  int32_t bodyA = -1, bodyB = -1;  ///< index into SceneDesc::bodies; -1: the world
+  bool localAnchors = false;       ///< false: world points; true: points in each body's frame (scene body origin)
+  Vec3 anchorA = Vec3::Zero();     ///< where the joint sits on A (and on B unless anchorB differs: distance joints)
+  Vec3 anchorB = Vec3::Zero();
+  bool localAxis = false;          ///< false: world direction; true: in body A's frame
+  Vec3 axis = Vec3::UnitX();       ///< hinge axis, slider direction, cone-twist twist axis
+  /// Type, limits, motor, servo, break thresholds and collideConnected; bodies, anchors and frames are
+  /// filled when the World is built. A negative min/max distance stands for the initial anchor distance.
+  JointDef params;
+  std::string where;               ///< place in the scene file, e.g. "joints[3]"
+};
+
 struct SimSettings {
   float dt = 1.0f / 60.0f;
   Vec3 gravity = Vec3(0.0f, -9.81f, 0.0f);
@@ -83,6 +100,7 @@ struct SceneDesc {
   std::vector<MaterialDesc> materials;  ///< materials[0] always exists ("default")
   std::vector<BodyDesc> bodies;
   std::vector<WaterDesc> water;
+  std::vector<JointDesc> joints;
   CameraDesc camera;
 };
 
