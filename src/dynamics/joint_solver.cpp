@@ -232,8 +232,15 @@ void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* st
   if (d.bodyB != kWorldBody) stiffness[d.bodyB] += f * (bodies.xf[d.bodyB].rotate(d.localAnchorB)).norm();
 }
 
+void stiffenInertia(BodyStore& bodies, uint32_t body, float stiffness, float dt) {
+  const float k = stiffness * dt * dt;
+  if (!(k > 0.0f) || bodies.kind[body] != BodyKind::Dynamic) return;
+  const Mat3 I = bodies.invInertiaWorld[body].inverse();
+  bodies.invInertiaWorld[body] = (I + k * Mat3::Identity()).inverse();
+}
+
 void prepareJoint(const BodyStore& bodies, const Joint& j, uint32_t ji, const SolverParams& p,
-                  const JointSolverParams& jp, float time, const float* stiffness, JointConstraint& jc) {
+                  const JointSolverParams& jp, float time, JointConstraint& jc) {
   const JointDef& d = j.def;
   const uint32_t a = d.bodyA, b = d.bodyB;
   jc.a = a;
@@ -244,15 +251,8 @@ void prepareJoint(const BodyStore& bodies, const Joint& j, uint32_t ji, const So
   RowBuilder rb;
   rb.mA = jc.invMassA = jc.dynA ? bodies.invMass[a] : 0.0f;
   rb.mB = jc.invMassB = jc.dynB ? bodies.invMass[b] : 0.0f;
-  auto invInertia = [&](uint32_t body, bool dyn) -> Mat3 {
-    if (!dyn) return Mat3::Zero();
-    const float k = stiffness ? stiffness[body] * p.dt * p.dt : 0.0f;
-    if (!(k > 0.0f)) return bodies.invInertiaWorld[body];
-    const Mat3 I = bodies.invInertiaWorld[body].inverse();
-    return (I + k * Mat3::Identity()).inverse();
-  };
-  rb.iA = invInertia(a, jc.dynA);
-  rb.iB = invInertia(b, jc.dynB);
+  rb.iA = jc.dynA ? bodies.invInertiaWorld[a] : Mat3::Zero();
+  rb.iB = jc.dynB ? bodies.invInertiaWorld[b] : Mat3::Zero();
   const JointGeometry g = geometryOf(bodies, d);
   const float invDt = 1.0f / p.dt;
   const float beta = jp.beta * invDt;

@@ -61,16 +61,20 @@ struct JointConstraint {
 /// Geometric stiffness of the joints at their bodies: for each body, the sum over its joints of the last
 /// step's force times the lever arm (N m). A light link pulled hard along a chain has a rotation mode far
 /// faster than the step (a 100 kg load on 1 kg links: ~200 rad/s at 60 Hz) that the linearised joint rows
-/// meet only a step late, so it spins up and tears the chain. Adding h^2 times this stiffness to the
-/// link's inertia in the joint rows treats that mode implicitly (Andrews et al. 2017, diagonal geometric
-/// stiffness): it damps what a 60 Hz step cannot resolve and leaves slow motion alone. Adds to `stiffness`.
+/// meet only a step late, so it spins up and tears the chain. Adds to `stiffness` (per body).
 void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* stiffness);
 
+/// Adds h^2 times a body's geometric stiffness to its world inertia for this step's solve (Andrews et
+/// al. 2017, diagonal geometric stiffness): the fast mode is then treated implicitly, damped instead of
+/// spun up, and slow motion is left alone. Every row touching the body (joints and contacts) must see
+/// the same inertia, or the sweep stops being a projection and pumps energy (crates bounced off a rope
+/// bridge); integration restores the true inertia.
+void stiffenInertia(BodyStore& bodies, uint32_t body, float stiffness, float dt);
+
 /// Builds the rows of joint `j` (index ji) into `jc`; `time` is the simulated time at the end of the
-/// step (servo motors aim at their trajectory there). `stiffness` (per body, may be null) comes from
-/// accumulateJointStiffness.
+/// step (servo motors aim at their trajectory there).
 void prepareJoint(const BodyStore& bodies, const Joint& j, uint32_t ji, const SolverParams& p,
-                  const JointSolverParams& jp, float time, const float* stiffness, JointConstraint& jc);
+                  const JointSolverParams& jp, float time, JointConstraint& jc);
 
 /// Pseudo-inverse of a symmetric positive semi-definite m x m matrix (row-major) by LDL^T: a row that
 /// depends on earlier ones (pivot <= tolerance) is left out instead of blowing up. The rows come from

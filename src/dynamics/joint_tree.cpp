@@ -344,9 +344,9 @@ void JointTree::solveInPlace() {
 }
 
 void projectJointPositions(BodyStore& bodies, const Joint* joints, const uint32_t* ids, uint32_t n,
-                           const SolverParams& p, const JointSolverParams& jp, const float* stiffness,
-                           JointConstraint* scratch, JointTree& tree) {
-  for (uint32_t j = 0; j < n; ++j) prepareJoint(bodies, joints[ids[j]], ids[j], p, jp, 0.0f, stiffness, scratch[j]);
+                           const SolverParams& p, const JointSolverParams& jp, JointConstraint* scratch,
+                           JointTree& tree) {
+  for (uint32_t j = 0; j < n; ++j) prepareJoint(bodies, joints[ids[j]], ids[j], p, jp, 0.0f, scratch[j]);
   tree.build(scratch, n);
   tree.project(bodies, scratch);
 }

@@ -85,7 +85,7 @@ class JointTree {
 /// bodies' new positions into `scratch` (n entries), factors the tree and projects (JointTree::project).
 /// Joints outside the tree are left to the next step's soft rows.
 void projectJointPositions(BodyStore& bodies, const Joint* joints, const uint32_t* ids, uint32_t n,
-                           const SolverParams& p, const JointSolverParams& jp, const float* stiffness,
-                           JointConstraint* scratch, JointTree& tree);
+                           const SolverParams& p, const JointSolverParams& jp, JointConstraint* scratch,
+                           JointTree& tree);
 
 }  // namespace haif

@@ -176,22 +176,24 @@ void World::breakJoints() {
   }
 }
 
+// Geometric stiffness of loaded joints, added to their bodies' inertia for this step's solve (contacts
+// and joints alike); integration puts the true inertia back.
+void World::stiffenJointedBodies() {
+  if (!settings_.joints.geometricStiffness) return;
+  jointStiffness_.assign(bodyCount(), 0.0f);
+  for (uint32_t ji : islands_.joints) accumulateJointStiffness(bodies_, joints_[ji], jointStiffness_.data());
+  for (uint32_t i : islands_.bodies) stiffenInertia(bodies_, i, jointStiffness_[i], settings_.dt);
+}
+
 // Rows of island k's joints, warm started; returns the island's joint tree (null when joints are solved
-// one by one). Per-body stiffness sums are safe in parallel: a body is in one island only.
+// one by one).
 JointTree* World::prepareJoints(uint32_t k, const SolverParams& sp) {
   const Island& isl = islands_.islands[k];
   JointConstraint* js = jointConstraints_.data() + isl.firstJoint;
   const uint32_t nj = isl.jointCount;
   const uint32_t* ids = islands_.joints.data() + isl.firstJoint;
-  const float* stiffness = nullptr;
-  if (settings_.joints.geometricStiffness) {
-    for (uint32_t j = 0; j < isl.bodyCount; ++j) jointStiffness_[islands_.bodies[isl.firstBody + j]] = 0.0f;
-    for (uint32_t j = 0; j < nj; ++j) accumulateJointStiffness(bodies_, joints_[ids[j]], jointStiffness_.data());
-    stiffness = jointStiffness_.data();
-  }
   const float time = float(stepCount_ + 1) * sp.dt;
-  for (uint32_t j = 0; j < nj; ++j)
-    prepareJoint(bodies_, joints_[ids[j]], ids[j], sp, settings_.joints, time, stiffness, js[j]);
+  for (uint32_t j = 0; j < nj; ++j) prepareJoint(bodies_, joints_[ids[j]], ids[j], sp, settings_.joints, time, js[j]);
   if (sp.warmStart) warmStartJoints(bodies_, js, nj);
   if (!settings_.joints.treeSolve) return nullptr;
   jointTrees_[k].build(js, nj);
@@ -206,9 +208,15 @@ void World::finishJoints(uint32_t k) {
   const uint32_t nj = isl.jointCount;
   storeJointImpulses(js, nj, settings_.dt, joints_.data());
   if (!settings_.joints.treeSolve || !settings_.joints.postProjection) return;
+  // The projection moves bodies in the same metric as the solve: light loaded links mostly translate.
+  const bool stiff = settings_.joints.geometricStiffness;
+  const uint32_t* bodies = islands_.bodies.data() + isl.firstBody;
+  if (stiff)
+    for (uint32_t j = 0; j < isl.bodyCount; ++j) stiffenInertia(bodies_, bodies[j], jointStiffness_[bodies[j]], settings_.dt);
   projectJointPositions(bodies_, joints_.data(), islands_.joints.data() + isl.firstJoint, nj, solverParams(),
-                        settings_.joints, settings_.joints.geometricStiffness ? jointStiffness_.data() : nullptr, js,
-                        jointTrees_[k]);
+                        settings_.joints, js, jointTrees_[k]);
+  if (stiff)
+    for (uint32_t j = 0; j < isl.bodyCount; ++j) bodies_.updateWorldInertia(bodies[j]);
 }
 
 void World::measureJointErrors() {
@@ -368,9 +376,10 @@ void World::solveIslands(int iterations) {
     int it = 0;
     float residual = 0.0f;
     while (it < iterations) {
-      // Joints before contacts: a contact sweep then ends each iteration with no new overlap.
-      residual = nj > 0 ? solveJointIteration(bodies_, js, nj, tree, sp.omega, true) : 0.0f;
-      residual = std::max(residual, solveIteration(bodies_, cs, n, sp.omega, true));
+      residual = solveIteration(bodies_, cs, n, sp.omega, true);
+      // Joints after contacts: the joint tree, solved exactly, ends each sweep intact. The other way round
+      // crates landing on a rope bridge left its joints open, and Baumgarte turned that into a bounce.
+      if (nj > 0) residual = std::max(residual, solveJointIteration(bodies_, js, nj, tree, sp.omega, true));
       ++it;
       // Converged islands stop: precision nobody can see is not paid for.
       if (tol > 0.0f && it >= iMin && residual < tol) break;
@@ -390,8 +399,8 @@ void World::relaxIslands(int relaxIterations) {
     const uint32_t nj = isl.jointCount;
     JointTree* tree = nj > 0 && settings_.joints.treeSolve ? &jointTrees_[k] : nullptr;
     for (int it = 0; it < relaxIterations; ++it) {
-      if (nj > 0) solveJointIteration(bodies_, js, nj, tree, omega, false);
       solveIteration(bodies_, cs, n, omega, false);
+      if (nj > 0) solveJointIteration(bodies_, js, nj, tree, omega, false);
     }
     storeImpulses(cs, n, contacts_.data());
     if (nj > 0) finishJoints(k);
@@ -444,7 +453,7 @@ void World::solve(int iterations) {
   constraints_.resize(islands_.contacts.size());
   jointConstraints_.resize(islands_.joints.size());
   if (jointTrees_.size() < m) jointTrees_.resize(m);  // grows to the most islands seen, then reused
-  if (!joints_.empty()) jointStiffness_.resize(bodyCount());
+  if (!joints_.empty()) stiffenJointedBodies();
   islandIterations_.assign(m, 0);
   islandResidual_.assign(m, 0.0f);
   // Islands come largest first: big ones get a task each, small ones are batched.

@@ -128,6 +128,7 @@ class World {
   void orderContactsTopDown();
   void putIslandToSleep(const Island& isl);
   void wakeJointedBodies();
+  void stiffenJointedBodies();
   JointTree* prepareJoints(uint32_t island, const SolverParams& sp);
   void finishJoints(uint32_t island);
   void breakJoints();
@@ -159,7 +160,7 @@ class World {
   std::vector<Joint> joints_;
   std::vector<JointConstraint> jointConstraints_;  // solver rows, grouped by island like constraints_
   std::vector<JointTree> jointTrees_;              // per island slot: factorisation buffers, reused
-  std::vector<float> jointStiffness_;              // per body, this step
+  std::vector<float> jointStiffness_;              // per body, this step (N m)
   PairMap jointPairs_;  // body pair -> number of unbroken joints that keep the two from colliding
 
   std::vector<std::vector<uint32_t>> sleepSets_;

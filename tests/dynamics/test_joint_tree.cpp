@@ -37,7 +37,7 @@ TEST(JointTree, OneSolveSatisfiesAChain) {
   SolverParams sp;
   std::vector<JointConstraint> js(w.jointCount());
   for (uint32_t j = 0; j < w.jointCount(); ++j)
-    prepareJoint(b, w.joint(j), j, sp, JointSolverParams{}, 0.0f, nullptr, js[j]);
+    prepareJoint(b, w.joint(j), j, sp, JointSolverParams{}, 0.0f, js[j]);
   JointTree tree;
   tree.build(js.data(), uint32_t(js.size()));
   EXPECT_EQ(tree.size(), w.jointCount());
@@ -86,7 +86,7 @@ TEST(JointTree, BranchingTreeWithRedundantPinsAndALoop) {
   SolverParams sp;
   std::vector<JointConstraint> js(w.jointCount());
   for (uint32_t j = 0; j < w.jointCount(); ++j)
-    prepareJoint(b, w.joint(j), j, sp, JointSolverParams{}, 0.0f, nullptr, js[j]);
+    prepareJoint(b, w.joint(j), j, sp, JointSolverParams{}, 0.0f, js[j]);
   JointTree tree;
   tree.build(js.data(), uint32_t(js.size()));
   EXPECT_EQ(tree.size(), w.jointCount() - 1);
