@@ -85,6 +85,27 @@ void FrameBuilder::build(const World& world, const CameraDesc& camera, render::F
     in.isStatic = b.kind[i] == BodyKind::Static;
     in.heat = std::min(1.0f, b.v[i].norm() / 5.0f);
   }
+  // Distance and rope joints have nothing of their own to see: draw each as a thin dark rod.
+  for (uint32_t j = 0; j < world.jointCount(); ++j) {
+    const Joint& jt = world.joint(j);
+    if (jt.broken || jt.def.type != JointType::Distance) continue;
+    auto at = [&](uint32_t body, const Vec3& local) { return body == kWorldBody ? local : b.xf[body].apply(local); };
+    const Vec3 pa = at(jt.def.bodyA, jt.def.localAnchorA), pb = at(jt.def.bodyB, jt.def.localAnchorB);
+    const float len = (pb - pa).norm();
+    if (!(len > 1e-4f)) continue;
+    render::Instance in;
+    in.kind = render::ShapeKind::Capsule;
+    const Vec3 c = 0.5f * (pa + pb);
+    const Quat q = Quat::FromTwoVectors(Vec3::UnitY(), (pb - pa) / len);
+    for (int k = 0; k < 3; ++k) in.position[k] = c[k];
+    in.orientation[0] = q.x(); in.orientation[1] = q.y(); in.orientation[2] = q.z(); in.orientation[3] = q.w();
+    in.radius = 0.012f;
+    in.halfHeight = 0.5f * len;
+    in.bodyId = world.bodyCount() + j;
+    in.useColor = true;
+    in.color[0] = in.color[1] = in.color[2] = 0.15f;
+    frame.instances.push_back(in);
+  }
   frame.contacts.clear();
   if (frame.showContacts) {
     for (const Contact& c : world.contacts())
