@@ -4,10 +4,30 @@
 
 namespace haif {
 
-bool FrameBuilder::registerMeshes(const World& world, render::Renderer& renderer, std::string& error) {
+bool FrameBuilder::registerMeshes(const World& world, const SceneDesc& scene, render::Renderer& renderer,
+                                  std::string& error) {
   meshOfBody_.assign(world.bodyCount(), 0);
+  renderMeshOfBody_.assign(world.bodyCount(), 0);
   for (uint32_t i = 0; i < world.bodyCount(); ++i) {
     const Shape& s = world.shape(i);
+    if (i < scene.bodies.size() && !scene.bodies[i].renderMesh.asset.empty()) {
+      // The world body sits at the hull's centre of mass, not the scene body's origin: shift by it.
+      const RenderMeshDesc& r = scene.bodies[i].renderMesh;
+      const Vec3 shift = s.type == ShapeType::ConvexHull ? s.hull->centroid : Vec3::Zero();
+      std::vector<float> pos;
+      pos.reserve(3 * r.vertices.size());
+      for (const Vec3& v : r.vertices) pos.insert(pos.end(), {v.x() - shift.x(), v.y() - shift.y(), v.z() - shift.z()});
+      const uint32_t id = static_cast<uint32_t>(meshIds_.size() + renderMeshes_ + 1);
+      std::string why;
+      if (!renderer.registerMesh(id, pos, r.indices, &why)) {
+        error = scene.bodies[i].where + ".render_mesh: cannot register '" + r.asset + "': " + why;
+        return false;
+      }
+      ++renderMeshes_;
+      meshOfBody_[i] = id;
+      renderMeshOfBody_[i] = 1;
+      continue;
+    }
     const void* key = s.type == ShapeType::ConvexHull ? static_cast<const void*>(s.hull.get())
                       : s.type == ShapeType::TriangleMesh ? static_cast<const void*>(s.mesh.get())
                                                           : nullptr;
@@ -26,7 +46,7 @@ bool FrameBuilder::registerMeshes(const World& world, render::Renderer& renderer
         for (const Vec3& v : s.mesh->vertices) pos.insert(pos.end(), {v.x(), v.y(), v.z()});
         idx = s.mesh->indices;
       }
-      const uint32_t id = static_cast<uint32_t>(meshIds_.size() + 1);
+      const uint32_t id = static_cast<uint32_t>(meshIds_.size() + renderMeshes_ + 1);
       std::string why;
       if (!renderer.registerMesh(id, pos, idx, &why)) {
         error = "body " + std::to_string(i) + ": cannot register render mesh: " + why;
@@ -78,6 +98,7 @@ void FrameBuilder::build(const World& world, const CameraDesc& camera, render::F
     in.radius = s.radius;
     in.halfHeight = s.halfHeight;
     in.meshId = i < meshOfBody_.size() ? meshOfBody_[i] : 0;
+    if (i < renderMeshOfBody_.size() && renderMeshOfBody_[i]) in.kind = render::ShapeKind::TriangleMesh;
     in.bodyId = i;
     const int32_t island = world.islandOf(i);
     in.islandId = island < 0 ? 0u : uint32_t(island);

@@ -21,6 +21,7 @@ void usage(FILE* out) {
       "  bench           the seed's table: sequential fixed-10 against HAIF adaptive on stacks_N\n"
       "                  [--scenes a,b,..] [--steps N] [--budget-ms B] [--threads T] [--out DIR]\n"
       "  calibrate       measure this machine's cost model [--out FILE] [--threads T]\n"
+      "  assets          write the generated mesh assets (OBJ, STL, PLY, glTF, GLB) [--out DIR]\n"
       "  help            this text\n",
       out);
 }
@@ -40,6 +41,7 @@ int main(int argc, char** argv) {
   if (!std::strcmp(cmd, "run")) return haif::commandRun(argc, argv);
   if (!std::strcmp(cmd, "bench")) return haif::commandBench(argc, argv);
   if (!std::strcmp(cmd, "calibrate")) return haif::commandCalibrate(argc, argv);
+  if (!std::strcmp(cmd, "assets")) return haif::commandAssets(argc, argv);
   std::fprintf(stderr, "haif: unknown command '%s' (see 'haif help')\n", cmd);
   return 2;
 }

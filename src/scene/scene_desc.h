@@ -35,6 +35,14 @@ struct ShapeDesc {
   Vec3 assetScale = Vec3::Ones();
 };
 
+/// A mesh drawn in place of a body's collision shape (the body still collides as its shape).
+struct RenderMeshDesc {
+  std::string asset;             ///< as written in the scene file; empty: draw the collision shape
+  Vec3 scale = Vec3::Ones();
+  std::vector<Vec3> vertices;    ///< body frame (the scene body's position and orientation)
+  std::vector<uint32_t> indices;
+};
+
 struct BodyDesc {
   std::string name;
   MotionType motion = MotionType::Dynamic;
@@ -47,6 +55,7 @@ struct BodyDesc {
   uint32_t material = 0;                ///< index into SceneDesc::materials
   float linearDamping = 0.0f;           ///< 1/s
   float angularDamping = 0.0f;          ///< 1/s
+  RenderMeshDesc renderMesh;
   std::string where;                    ///< place in the scene file, e.g. "bodies[3]" or "generators[1] box 17"
 };
 

@@ -129,6 +129,14 @@ bool checkBody(Checker& c, const SceneDesc& scene, const BodyDesc& b) {
     return c.bad("material", "material index " + std::to_string(b.material) + " is out of range");
   if (!c.nonNegative("damping.linear", b.linearDamping) || !c.nonNegative("damping.angular", b.angularDamping)) return false;
   if (!checkShape(c, b.shape, b.motion)) return false;
+  if (!b.renderMesh.asset.empty()) {
+    if (b.renderMesh.indices.empty() || b.renderMesh.indices.size() % 3 != 0)
+      return c.bad("render_mesh.asset", "a render mesh needs triangles");
+    for (const Vec3& v : b.renderMesh.vertices)
+      if (!c.finiteVec("render_mesh.asset", v)) return false;
+    for (uint32_t i : b.renderMesh.indices)
+      if (i >= b.renderMesh.vertices.size()) return c.bad("render_mesh.asset", "index out of range");
+  }
   if (!c.isFiniteNum("mass", b.mass)) return false;
   if (b.motion == MotionType::Dynamic) {
     if (b.mass < 0.0f) return c.bad("mass", "must be > 0 for a dynamic body (got " + formatNumber(b.mass) + ")");
