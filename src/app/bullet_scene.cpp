@@ -36,7 +36,7 @@ class BulletScene final : public SimulatedScene {
   float iMax() const override { return float(iterations()); }
 
   bool prepare(render::Renderer& renderer, std::string& error) override {
-    return builder_.registerMeshes(*shadow_, renderer, error);
+    return builder_.registerMeshes(*shadow_, run_->scene(), renderer, error);
   }
 
   bool step(std::string& error) override {

@@ -13,10 +13,30 @@ bool parseViewMode(const std::string& text, render::ViewMode& out) {
   return true;
 }
 
-bool FrameBuilder::registerMeshes(const World& world, render::Renderer& renderer, std::string& error) {
+bool FrameBuilder::registerMeshes(const World& world, const SceneDesc& scene, render::Renderer& renderer,
+                                  std::string& error) {
   meshOfBody_.assign(world.bodyCount(), 0);
+  renderMeshOfBody_.assign(world.bodyCount(), 0);
   for (uint32_t i = 0; i < world.bodyCount(); ++i) {
     const Shape& s = world.shape(i);
+    if (i < scene.bodies.size() && !scene.bodies[i].renderMesh.asset.empty()) {
+      // The world body sits at the hull's centre of mass, not the scene body's origin: shift by it.
+      const RenderMeshDesc& r = scene.bodies[i].renderMesh;
+      const Vec3 shift = s.type == ShapeType::ConvexHull ? s.hull->centroid : Vec3::Zero();
+      std::vector<float> pos;
+      pos.reserve(3 * r.vertices.size());
+      for (const Vec3& v : r.vertices) pos.insert(pos.end(), {v.x() - shift.x(), v.y() - shift.y(), v.z() - shift.z()});
+      const uint32_t id = static_cast<uint32_t>(meshIds_.size() + renderMeshes_ + 1);
+      std::string why;
+      if (!renderer.registerMesh(id, pos, r.indices, &why)) {
+        error = scene.bodies[i].where + ".render_mesh: cannot register '" + r.asset + "': " + why;
+        return false;
+      }
+      ++renderMeshes_;
+      meshOfBody_[i] = id;
+      renderMeshOfBody_[i] = 1;
+      continue;
+    }
     const void* key = s.type == ShapeType::ConvexHull ? static_cast<const void*>(s.hull.get())
                       : s.type == ShapeType::TriangleMesh ? static_cast<const void*>(s.mesh.get())
                                                           : nullptr;
@@ -35,7 +55,7 @@ bool FrameBuilder::registerMeshes(const World& world, render::Renderer& renderer
         for (const Vec3& v : s.mesh->vertices) pos.insert(pos.end(), {v.x(), v.y(), v.z()});
         idx = s.mesh->indices;
       }
-      const uint32_t id = static_cast<uint32_t>(meshIds_.size() + 1);
+      const uint32_t id = static_cast<uint32_t>(meshIds_.size() + renderMeshes_ + 1);
       std::string why;
       if (!renderer.registerMesh(id, pos, idx, &why)) {
         error = "body " + std::to_string(i) + ": cannot register render mesh: " + why;
@@ -87,12 +107,34 @@ void FrameBuilder::build(const World& world, const CameraDesc& camera, render::F
     in.radius = s.radius;
     in.halfHeight = s.halfHeight;
     in.meshId = i < meshOfBody_.size() ? meshOfBody_[i] : 0;
+    if (i < renderMeshOfBody_.size() && renderMeshOfBody_[i]) in.kind = render::ShapeKind::TriangleMesh;
     in.bodyId = i;
     const int32_t island = world.islandOf(i);
     in.islandId = island < 0 ? 0u : uint32_t(island);
     in.sleeping = b.asleep[i] != 0;
     in.isStatic = b.kind[i] == BodyKind::Static;
     in.heat = std::min(1.0f, b.v[i].norm() / 5.0f);
+  }
+  // Distance and rope joints have nothing of their own to see: draw each as a thin dark rod.
+  for (uint32_t j = 0; j < world.jointCount(); ++j) {
+    const Joint& jt = world.joint(j);
+    if (jt.broken || jt.def.type != JointType::Distance) continue;
+    auto at = [&](uint32_t body, const Vec3& local) { return body == kWorldBody ? local : b.xf[body].apply(local); };
+    const Vec3 pa = at(jt.def.bodyA, jt.def.localAnchorA), pb = at(jt.def.bodyB, jt.def.localAnchorB);
+    const float len = (pb - pa).norm();
+    if (!(len > 1e-4f)) continue;
+    render::Instance in;
+    in.kind = render::ShapeKind::Capsule;
+    const Vec3 c = 0.5f * (pa + pb);
+    const Quat q = Quat::FromTwoVectors(Vec3::UnitY(), (pb - pa) / len);
+    for (int k = 0; k < 3; ++k) in.position[k] = c[k];
+    in.orientation[0] = q.x(); in.orientation[1] = q.y(); in.orientation[2] = q.z(); in.orientation[3] = q.w();
+    in.radius = 0.012f;
+    in.halfHeight = 0.5f * len;
+    in.bodyId = world.bodyCount() + j;
+    in.useColor = true;
+    in.color[0] = in.color[1] = in.color[2] = 0.15f;
+    frame.instances.push_back(in);
   }
   frame.contacts.clear();
   if (frame.showContacts) {

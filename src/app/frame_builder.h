@@ -16,14 +16,18 @@ bool parseViewMode(const std::string& text, render::ViewMode& out);
 
 class FrameBuilder {
  public:
-  /// Registers the hull and mesh geometry of the world's bodies with the renderer (once).
-  bool registerMeshes(const World& world, render::Renderer& renderer, std::string& error);
+  /// Registers the hull and mesh geometry of the world's bodies with the renderer (once), and the
+  /// render meshes of the scene's bodies (drawn in place of their collision shapes; body i of the scene
+  /// is body i of the world).
+  bool registerMeshes(const World& world, const SceneDesc& scene, render::Renderer& renderer, std::string& error);
   /// Fills `frame` (reusing its vectors) with the bodies' current transforms and state.
   void build(const World& world, const CameraDesc& camera, render::FrameInput& frame) const;
 
  private:
   std::map<const void*, uint32_t> meshIds_;  // geometry pointer -> render mesh id
   std::vector<uint32_t> meshOfBody_;
+  std::vector<uint8_t> renderMeshOfBody_;  // 1: meshOfBody_ is the scene's render mesh
+  uint32_t renderMeshes_ = 0;
 };
 
 }  // namespace haif

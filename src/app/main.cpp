@@ -34,6 +34,7 @@ void usage(FILE* out) {
       "                  [--out DIR] [--threshold T] [--max-diff-ratio R] [--min-ssim S]\n"
       "                  [--mask overlay|none|X0:Y0:X1:Y1[,...]] [--no-aa] [--no-diff-images]\n"
       "                  [--allow-adaptive]\n"
+      "  assets          write the generated mesh assets (OBJ, STL, PLY, glTF, GLB) [--out DIR]\n"
       "  help            this text\n",
       out);
 }
@@ -56,6 +57,7 @@ int main(int argc, char** argv) {
   if (!std::strcmp(cmd, "diff")) return haif::commandDiff(argc, argv);
   if (!std::strcmp(cmd, "compare")) return haif::commandCompare(argc, argv);
   if (!std::strcmp(cmd, "reel")) return haif::commandReel(argc, argv);
+  if (!std::strcmp(cmd, "assets")) return haif::commandAssets(argc, argv);
   std::fprintf(stderr, "haif: unknown command '%s' (see 'haif help')\n", cmd);
   return 2;
 }

@@ -89,7 +89,7 @@ class HaifScene : public SimulatedScene {
   float iMax() const override { return iMax_; }
 
   bool prepare(render::Renderer& renderer, std::string& error) override {
-    return builder_.registerMeshes(*sim_.world, renderer, error);
+    return builder_.registerMeshes(*sim_.world, sim_.scene, renderer, error);
   }
 
   bool step(std::string& error) override {

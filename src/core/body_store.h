@@ -26,6 +26,7 @@ struct BodyStore {
   std::vector<float> mass;
   std::vector<float> linearDamping, angularDamping;
   std::vector<float> friction, restitution;
+  std::vector<uint8_t> implicitGyro;  ///< 1: gyroscopic term integrated implicitly (bodies with joints)
   // Sleep bookkeeping.
   std::vector<float> restTime;        ///< seconds the body has been slower than the sleep thresholds
   std::vector<uint8_t> asleep;
@@ -53,6 +54,7 @@ struct BodyStore {
     angularDamping.push_back(0.0f);
     friction.push_back(0.6f);
     restitution.push_back(0.0f);
+    implicitGyro.push_back(0);
     restTime.push_back(0.0f);
     asleep.push_back(0);
     sleepSet.push_back(-1);

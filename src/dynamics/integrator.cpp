@@ -32,7 +32,19 @@ void integratePositions(BodyStore& b, uint32_t begin, uint32_t end, float dt, fl
       xf.q = q.normalized();
     }
     if (k != BodyKind::Dynamic) continue;
-    if (w.squaredNorm() > 0.0f) {
+    if (w.squaredNorm() > 0.0f && b.implicitGyro[i]) {
+      // Solve I (ω' - ω) + dt ω' × I ω' = 0 in the body frame by one Newton step from ω.
+      const Mat3& I = b.inertiaLocal[i];
+      const Vec3 wb = xf.q.conjugate() * w;
+      const Vec3 Iw = I * wb;
+      auto skew = [](const Vec3& a) {
+        Mat3 m;
+        m << 0.0f, -a.z(), a.y(), a.z(), 0.0f, -a.x(), -a.y(), a.x(), 0.0f;
+        return m;
+      };
+      const Mat3 J = I + dt * (skew(wb) * I - skew(Iw));
+      b.w[i] = xf.q * (wb - J.inverse() * (dt * wb.cross(Iw)));
+    } else if (w.squaredNorm() > 0.0f) {
       // Angular momentum in world space is unchanged by a pure rotation of the body.
       const Vec3 L = qOld * (b.inertiaLocal[i] * (qOld.conjugate() * w));
       b.w[i] = xf.q * (b.invInertiaLocal[i] * (xf.q.conjugate() * L));

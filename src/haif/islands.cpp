@@ -10,13 +10,17 @@ namespace {
 inline bool active(const BodyStore& b, uint32_t i) { return b.kind[i] == BodyKind::Dynamic && !b.asleep[i]; }
 }  // namespace
 
-void IslandBuilder::build(const BodyStore& bodies, const std::vector<Contact>& contacts, IslandSet& out) {
+void IslandBuilder::build(const BodyStore& bodies, const std::vector<Contact>& contacts,
+                          const std::vector<Joint>& joints, IslandSet& out) {
   const uint32_t n = static_cast<uint32_t>(bodies.size());
   parent_.resize(n);
   for (uint32_t i = 0; i < n; ++i) parent_[i] = i;
   for (const Contact& c : contacts) {
     if (c.touching() && active(bodies, c.a) && active(bodies, c.b)) unite(c.a, c.b);
   }
+  auto activeEnd = [&](uint32_t i) { return i != kWorldBody && active(bodies, i); };
+  for (const Joint& j : joints)
+    if (!j.broken && activeEnd(j.def.bodyA) && activeEnd(j.def.bodyB)) unite(j.def.bodyA, j.def.bodyB);
 
   // Number the islands by their smallest body id (the root), in ascending order.
   islandOfRoot_.assign(n, -1);
@@ -42,6 +46,18 @@ void IslandBuilder::build(const BodyStore& bodies, const std::vector<Contact>& c
     ++unsorted_[k].contactCount;
     unsorted_[k].rows += solverRowsFor(c.manifold.count);
   }
+  auto islandOfJoint = [&](const Joint& j) -> int32_t {
+    if (j.broken) return -1;
+    if (activeEnd(j.def.bodyA)) return islandOfRoot_[find(j.def.bodyA)];
+    if (activeEnd(j.def.bodyB)) return islandOfRoot_[find(j.def.bodyB)];
+    return -1;
+  };
+  for (const Joint& j : joints) {
+    const int32_t k = islandOfJoint(j);
+    if (k < 0) continue;
+    ++unsorted_[k].jointCount;
+    unsorted_[k].rows += jointRowCount(j.def);
+  }
 
   // Largest first, so the longest task starts first when islands run in parallel.
   const uint32_t m = static_cast<uint32_t>(unsorted_.size());
@@ -54,7 +70,8 @@ void IslandBuilder::build(const BodyStore& bodies, const std::vector<Contact>& c
   out.islands.resize(m);
   cursorBody_.resize(m);
   cursorContact_.resize(m);
-  uint32_t fb = 0, fc = 0;
+  cursorJoint_.resize(m);
+  uint32_t fb = 0, fc = 0, fj = 0;
   out.totalRows = out.largestRows = out.largestBodies = 0;
   for (uint32_t s = 0; s < m; ++s) {
     Island isl = unsorted_[order_[s]];
@@ -62,6 +79,9 @@ void IslandBuilder::build(const BodyStore& bodies, const std::vector<Contact>& c
     isl.firstContact = fc;
     fb += isl.bodyCount;
     fc += isl.contactCount;
+    isl.firstJoint = fj;
+    fj += isl.jointCount;
+    cursorJoint_[order_[s]] = isl.firstJoint;
     cursorBody_[order_[s]] = isl.firstBody;
     cursorContact_[order_[s]] = isl.firstContact;
     out.totalRows += isl.rows;
@@ -71,6 +91,7 @@ void IslandBuilder::build(const BodyStore& bodies, const std::vector<Contact>& c
   }
   out.bodies.resize(fb);
   out.contacts.resize(fc);
+  out.joints.resize(fj);
   for (uint32_t i = 0; i < n; ++i) {
     if (!active(bodies, i)) continue;
     out.bodies[cursorBody_[islandOfRoot_[find(i)]]++] = i;
@@ -78,6 +99,10 @@ void IslandBuilder::build(const BodyStore& bodies, const std::vector<Contact>& c
   for (uint32_t ci = 0; ci < contacts.size(); ++ci) {
     const int32_t k = islandOfContact(contacts[ci]);
     if (k >= 0) out.contacts[cursorContact_[k]++] = ci;
+  }
+  for (uint32_t ji = 0; ji < joints.size(); ++ji) {
+    const int32_t k = islandOfJoint(joints[ji]);
+    if (k >= 0) out.joints[cursorJoint_[k]++] = ji;
   }
 }
 

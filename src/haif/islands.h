@@ -5,6 +5,7 @@
 
 #include "core/body_store.h"
 #include "dynamics/contact.h"
+#include "dynamics/joint.h"
 
 #include <cstdint>
 #include <vector>
@@ -15,12 +16,14 @@ struct Island {
   uint32_t firstBody = 0, bodyCount = 0;        ///< range in IslandSet::bodies
   uint32_t firstContact = 0, contactCount = 0;  ///< range in IslandSet::contacts
   uint32_t rows = 0;                            ///< solver rows (solverRowsFor per manifold): the work of one iteration
+  uint32_t firstJoint = 0, jointCount = 0;      ///< range in IslandSet::joints
 };
 
 struct IslandSet {
   std::vector<Island> islands;    ///< largest (most rows) first
   std::vector<uint32_t> bodies;   ///< body ids grouped by island, ascending within an island
   std::vector<uint32_t> contacts; ///< contact indices grouped by island, ascending within an island
+  std::vector<uint32_t> joints;   ///< joint indices grouped by island, ascending within an island
   uint32_t totalRows = 0;
   uint32_t largestRows = 0;
   uint32_t largestBodies = 0;
@@ -30,7 +33,13 @@ struct IslandSet {
 class IslandBuilder {
  public:
   /// A contact joins its bodies when it has points and both bodies are awake dynamic ones.
-  void build(const BodyStore& bodies, const std::vector<Contact>& contacts, IslandSet& out);
+  void build(const BodyStore& bodies, const std::vector<Contact>& contacts, IslandSet& out) {
+    build(bodies, contacts, {}, out);
+  }
+  /// Joints are edges like contacts: an unbroken joint between two awake dynamic bodies joins them; a
+  /// joint to the world, a static or a kinematic body belongs to the island of its dynamic body.
+  void build(const BodyStore& bodies, const std::vector<Contact>& contacts, const std::vector<Joint>& joints,
+             IslandSet& out);
 
  private:
   uint32_t find(uint32_t x) {
@@ -50,7 +59,7 @@ class IslandBuilder {
 
   std::vector<uint32_t> parent_;
   std::vector<int32_t> islandOfRoot_;
-  std::vector<uint32_t> cursorBody_, cursorContact_;
+  std::vector<uint32_t> cursorBody_, cursorContact_, cursorJoint_;
   std::vector<uint32_t> order_;
   std::vector<Island> unsorted_;
 };

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <algorithm>
 #include <cstring>
+#include <stdexcept>
 
 namespace haif {
 
@@ -101,6 +102,133 @@ void World::wake(uint32_t body) {
   freeSleepSets_.push_back(set);
 }
 
+// ---- joints ------------------------------------------------------------------------------
+
+uint32_t World::addJoint(const JointDef& def) {
+  auto valid = [&](uint32_t b) { return b == kWorldBody || b < bodyCount(); };
+  if (!valid(def.bodyA) || !valid(def.bodyB)) throw std::invalid_argument("addJoint: unknown body");
+  if (def.bodyA == def.bodyB) throw std::invalid_argument("addJoint: a joint needs two different bodies");
+  Joint j;
+  j.def = def;
+  joints_.push_back(j);
+  for (uint32_t b : {def.bodyA, def.bodyB})
+    if (b != kWorldBody) bodies_.implicitGyro[b] = 1;  // see integratePositions
+  if (!def.collideConnected && def.bodyA != kWorldBody && def.bodyB != kWorldBody) {
+    // Jointed bodies usually overlap at the joint: keep the pair out of the contact list.
+    const uint64_t key = PairMap::key(def.bodyA, def.bodyB);
+    const uint32_t n = jointPairs_.find(key);
+    jointPairs_.set(key, n == PairMap::kNotFound ? 1u : n + 1u);
+    const uint32_t ci = pairs_.find(key);
+    if (ci != PairMap::kNotFound) {  // a contact made before the joint: remove it as the narrow phase does
+      pairs_.erase(key);
+      if (ci + 1 != contacts_.size()) {
+        contacts_[ci] = contacts_.back();
+        pairs_.set(PairMap::key(contacts_[ci].a, contacts_[ci].b), ci);
+      }
+      contacts_.pop_back();
+    }
+  }
+  return static_cast<uint32_t>(joints_.size() - 1);
+}
+
+JointError World::jointError(uint32_t id) const {
+  return joints_[id].broken ? JointError{} : measureJointError(bodies_, joints_[id]);
+}
+
+// A joint carries its bodies' motion across: a sleeping body joined to an awake one wakes up.
+void World::wakeJointedBodies() {
+  auto awake = [&](uint32_t i) {
+    return i != kWorldBody && bodies_.kind[i] == BodyKind::Dynamic && !bodies_.asleep[i];
+  };
+  auto sleeping = [&](uint32_t i) { return i != kWorldBody && bodies_.asleep[i]; };
+  for (const Joint& j : joints_) {
+    if (j.broken) continue;
+    if (awake(j.def.bodyA) && sleeping(j.def.bodyB)) wake(j.def.bodyB);
+    else if (awake(j.def.bodyB) && sleeping(j.def.bodyA)) wake(j.def.bodyA);
+  }
+}
+
+// After the solve: joints whose force or torque went over their threshold break (in index order, so
+// the outcome does not depend on threads). Their bodies collide again from the next step.
+void World::breakJoints() {
+  for (Joint& j : joints_) {
+    const JointDef& d = j.def;
+    if (j.broken || (j.lastForce.norm() <= d.breakForce && j.lastTorque.norm() <= d.breakTorque)) continue;
+    j.broken = true;
+    j.lastForce.setZero();
+    j.lastTorque.setZero();
+    if (d.collideConnected || d.bodyA == kWorldBody || d.bodyB == kWorldBody) continue;
+    const uint64_t key = PairMap::key(d.bodyA, d.bodyB);
+    const uint32_t n = jointPairs_.find(key);
+    if (n > 1) {
+      jointPairs_.set(key, n - 1);
+      continue;
+    }
+    jointPairs_.erase(key);
+    // The broad phase reports only new overlaps: a pair that already overlaps gets its contact here.
+    if (pairs_.find(key) == PairMap::kNotFound && broadPhase_.fatOverlap(d.bodyA, d.bodyB)) {
+      Contact c;
+      c.a = std::min(d.bodyA, d.bodyB);
+      c.b = std::max(d.bodyA, d.bodyB);
+      c.friction = std::sqrt(bodies_.friction[c.a] * bodies_.friction[c.b]);
+      c.restitution = std::max(bodies_.restitution[c.a], bodies_.restitution[c.b]);
+      pairs_.set(key, static_cast<uint32_t>(contacts_.size()));
+      contacts_.push_back(c);
+    }
+  }
+}
+
+// Geometric stiffness of loaded joints, added to their bodies' inertia for this step's solve (contacts
+// and joints alike); integration puts the true inertia back.
+void World::stiffenJointedBodies() {
+  if (!settings_.joints.geometricStiffness) return;
+  jointStiffness_.assign(bodyCount(), 0.0f);
+  for (uint32_t ji : islands_.joints) accumulateJointStiffness(bodies_, joints_[ji], jointStiffness_.data());
+  for (uint32_t i : islands_.bodies) stiffenInertia(bodies_, i, jointStiffness_[i], settings_.dt);
+}
+
+// Rows of island k's joints, warm started; returns the island's joint tree (null when joints are solved
+// one by one).
+JointTree* World::prepareJoints(uint32_t k, const SolverParams& sp) {
+  const Island& isl = islands_.islands[k];
+  JointConstraint* js = jointConstraints_.data() + isl.firstJoint;
+  const uint32_t nj = isl.jointCount;
+  const uint32_t* ids = islands_.joints.data() + isl.firstJoint;
+  const float time = float(stepCount_ + 1) * sp.dt;
+  for (uint32_t j = 0; j < nj; ++j) prepareJoint(bodies_, joints_[ids[j]], ids[j], sp, settings_.joints, time, js[j]);
+  if (sp.warmStart) warmStartJoints(bodies_, js, nj);
+  if (!settings_.joints.treeSolve) return nullptr;
+  jointTrees_[k].build(js, nj);
+  return &jointTrees_[k];
+}
+
+// After the relax sweeps: keep the impulses for the next step, then (the rows being free now) project the
+// tree joints back onto their constraints at the integrated positions.
+void World::finishJoints(uint32_t k) {
+  const Island& isl = islands_.islands[k];
+  JointConstraint* js = jointConstraints_.data() + isl.firstJoint;
+  const uint32_t nj = isl.jointCount;
+  storeJointImpulses(js, nj, settings_.dt, joints_.data());
+  if (!settings_.joints.treeSolve || !settings_.joints.postProjection) return;
+  // The projection moves bodies in the same metric as the solve: light loaded links mostly translate.
+  const bool stiff = settings_.joints.geometricStiffness;
+  const uint32_t* bodies = islands_.bodies.data() + isl.firstBody;
+  if (stiff)
+    for (uint32_t j = 0; j < isl.bodyCount; ++j) stiffenInertia(bodies_, bodies[j], jointStiffness_[bodies[j]], settings_.dt);
+  projectJointPositions(bodies_, joints_.data(), islands_.joints.data() + isl.firstJoint, nj, solverParams(),
+                        settings_.joints, js, jointTrees_[k]);
+  if (stiff)
+    for (uint32_t j = 0; j < isl.bodyCount; ++j) bodies_.updateWorldInertia(bodies[j]);
+}
+
+void World::measureJointErrors() {
+  for (uint32_t i = 0; i < jointCount(); ++i) {
+    const JointError e = jointError(i);
+    stats_.jointErrorM = std::max(stats_.jointErrorM, e.linear);
+    stats_.jointErrorRad = std::max(stats_.jointErrorRad, e.angular);
+  }
+}
+
 // ---- collision ---------------------------------------------------------------------------
 
 void World::updateBroadPhase() {
@@ -122,6 +250,7 @@ void World::updateBroadPhase() {
     const bool dynA = bodies_.kind[a] == BodyKind::Dynamic, dynB = bodies_.kind[b] == BodyKind::Dynamic;
     if (!dynA && !dynB) return;  // static/kinematic pairs need no contact
     const uint64_t key = PairMap::key(a, b);
+    if (jointPairs_.find(key) != PairMap::kNotFound) return;  // jointed bodies do not collide
     if (pairs_.find(key) != PairMap::kNotFound) return;
     Contact c;
     c.a = std::min(a, b);
@@ -244,15 +373,21 @@ void World::solveIslands(int iterations) {
       prepareContact(bodies_, contacts_[ci], ci, sp, cs[j]);
     }
     if (sp.warmStart) warmStart(bodies_, cs, n);
+    JointConstraint* js = jointConstraints_.data() + isl.firstJoint;
+    const uint32_t nj = isl.jointCount;
+    JointTree* tree = nj > 0 ? prepareJoints(k, sp) : nullptr;
     int it = 0;
     float residual = 0.0f;
     while (it < iterations) {
       residual = solveIteration(bodies_, cs, n, sp.omega, true);
+      // Joints after contacts: the joint tree, solved exactly, ends each sweep intact. The other way round
+      // crates landing on a rope bridge left its joints open, and Baumgarte turned that into a bounce.
+      if (nj > 0) residual = std::max(residual, solveJointIteration(bodies_, js, nj, tree, sp.omega, true));
       ++it;
       // Converged islands stop: precision nobody can see is not paid for.
       if (tol > 0.0f && it >= iMin && residual < tol) break;
     }
-    islandIterations_[k] = n > 0 ? it : 0;
+    islandIterations_[k] = n + nj > 0 ? it : 0;
     islandResidual_[k] = residual;
   });
   if (tol > 0.0f && iterations > 0) shareSpareIterations(iterations);
@@ -301,9 +436,16 @@ void World::relaxIslands(int relaxIterations) {
     const Island& isl = islands_.islands[k];
     ContactConstraint* cs = constraints_.data() + isl.firstContact;
     const uint32_t n = isl.contactCount;
-    for (int it = 0; it < relaxIterations; ++it) solveIteration(bodies_, cs, n, omega, false);
+    JointConstraint* js = jointConstraints_.data() + isl.firstJoint;
+    const uint32_t nj = isl.jointCount;
+    JointTree* tree = nj > 0 && settings_.joints.treeSolve ? &jointTrees_[k] : nullptr;
+    for (int it = 0; it < relaxIterations; ++it) {
+      solveIteration(bodies_, cs, n, omega, false);
+      if (nj > 0) solveJointIteration(bodies_, js, nj, tree, omega, false);
+    }
     storeImpulses(cs, n, contacts_.data());
-    if (n > 0) islandIterations_[k] += relaxIterations;
+    if (nj > 0) finishJoints(k);
+    if (n + nj > 0) islandIterations_[k] += relaxIterations;
   });
 }
 
@@ -355,6 +497,9 @@ void World::solve(int iterations) {
   // Iterations with position correction now; the relax iterations run after integration.
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
   constraints_.resize(islands_.contacts.size());
+  jointConstraints_.resize(islands_.joints.size());
+  if (jointTrees_.size() < m) jointTrees_.resize(m);  // grows to the most islands seen, then reused
+  if (!joints_.empty()) stiffenJointedBodies();
   islandIterations_.assign(m, 0);
   islandResidual_.assign(m, 0.0f);
   // Islands come largest first: big ones get a task each, small ones are batched.
@@ -384,7 +529,7 @@ void World::summariseIterations() {
   uint64_t rowIt = 0;
   for (uint32_t k = 0; k < m; ++k) {
     const Island& isl = islands_.islands[k];
-    if (isl.contactCount == 0) continue;
+    if (isl.contactCount + isl.jointCount == 0) continue;
     lo = std::min(lo, islandIterations_[k]);
     hi = std::max(hi, islandIterations_[k]);
     sum += islandIterations_[k];
@@ -473,7 +618,11 @@ void World::step() {
   stats_.collisionMs = msSince(t0);
 
   // 4. Islands.
-  islandBuilder_.build(bodies_, contacts_, islands_);
+  if (!joints_.empty()) {
+    stats_.stages |= kStageJoints;
+    wakeJointedBodies();
+  }
+  islandBuilder_.build(bodies_, contacts_, joints_, islands_);
   if (settings_.topDownOrder) orderContactsTopDown();
   std::fill(islandOfBody_.begin(), islandOfBody_.end(), -1);
   for (uint32_t k = 0; k < islands_.islands.size(); ++k) {
@@ -513,6 +662,7 @@ void World::step() {
   });
   const auto t3 = Clock::now();
   relaxIslands(relax);
+  if (!joints_.empty()) breakJoints();
   const double relaxMs = msSince(t3);
   stats_.solveMs += relaxMs;
   summariseIterations();
@@ -537,6 +687,7 @@ void World::step() {
   stats_.largestIsland = islands_.largestBodies;
   stats_.totalMs = msSince(t0) - measurementMs_;
   stats_.deadlineMiss = settings_.budgetMs > 0.0 && stats_.totalMs > settings_.budgetMs;
+  if (!joints_.empty()) measureJointErrors();  // a metric: outside the step's timing
   obs.integrateMs = stats_.integrateMs;
   obs.totalMs = stats_.totalMs;
   controller_->observe(ctx, obs);

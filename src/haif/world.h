@@ -10,6 +10,8 @@
 #include "dynamics/buoyancy.h"
 #include "dynamics/contact.h"
 #include "dynamics/contact_solver.h"
+#include "dynamics/joint_solver.h"
+#include "dynamics/joint_tree.h"
 #include "haif/islands.h"
 #include "haif/iteration_controller.h"
 #include "haif/step_stats.h"
@@ -33,6 +35,7 @@ struct WorldSettings {
   bool warmStart = true;
   float maxPushVelocity = 0.2f;     ///< cap on the Baumgarte push-out speed (m/s)
   bool topDownOrder = true;         ///< solve the highest contacts of an island first
+  JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)
   bool sleeping = false;
   float timeToSleep = 0.5f;         ///< s an island must rest before it sleeps
   float sleepLinear = 0.05f;        ///< m/s
@@ -66,6 +69,15 @@ class World {
   /// Adds a body; returns its id (dense, in insertion order).
   uint32_t addBody(const BodyDef& def);
   void addWater(const WaterVolume& w) { water_.push_back(w); }
+  /// Adds a joint between two bodies, or a body and kWorldBody; returns its id (dense, in insertion
+  /// order). Throws std::invalid_argument for unknown bodies or a body joined to itself.
+  uint32_t addJoint(const JointDef& def);
+  uint32_t jointCount() const { return static_cast<uint32_t>(joints_.size()); }
+  const Joint& joint(uint32_t id) const { return joints_[id]; }
+  /// The definition of a joint, to change its motor, limits or thresholds between steps.
+  JointDef& jointDef(uint32_t id) { return joints_[id].def; }
+  /// Position error of a joint at the current state (DESIGN.md §5); zero for a broken joint.
+  JointError jointError(uint32_t id) const;
   /// Replaces the iteration controller (default: fixed at settings.iterations).
   void setController(std::unique_ptr<IterationController> c);
   IterationController& controller() { return *controller_; }
@@ -117,6 +129,12 @@ class World {
   void detectSleep();
   void orderContactsTopDown();
   void putIslandToSleep(const Island& isl);
+  void wakeJointedBodies();
+  void stiffenJointedBodies();
+  JointTree* prepareJoints(uint32_t island, const SolverParams& sp);
+  void finishJoints(uint32_t island);
+  void breakJoints();
+  void measureJointErrors();
   template <class F> void parallelFor(uint32_t n, uint32_t grain, F&& f);
 
   WorldSettings settings_;
@@ -141,6 +159,12 @@ class World {
   std::vector<float> islandResidual_;
   std::vector<int> islandExtra_;      // spare iterations given to unconverged islands this step
   std::vector<uint32_t> batchStart_;  // island batches for parallel solving
+
+  std::vector<Joint> joints_;
+  std::vector<JointConstraint> jointConstraints_;  // solver rows, grouped by island like constraints_
+  std::vector<JointTree> jointTrees_;              // per island slot: factorisation buffers, reused
+  std::vector<float> jointStiffness_;              // per body, this step (N m)
+  PairMap jointPairs_;  // body pair -> number of unbroken joints that keep the two from colliding
 
   std::vector<std::vector<uint32_t>> sleepSets_;
   std::vector<int32_t> freeSleepSets_;

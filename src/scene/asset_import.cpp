@@ -1,6 +1,7 @@
 #include "scene/asset_import.h"
 
 #include <assimp/cimport.h>
+#include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -10,9 +11,19 @@ bool importMeshAsset(const std::string& path, const Vec3& scale, std::vector<Vec
                      std::vector<uint32_t>& indices, std::string& error) {
   vertices.clear();
   indices.clear();
-  // The C API keeps assimp's C++ types (and its exceptions) out of our headers.
-  const aiScene* scene = aiImportFile(path.c_str(), aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                                                        aiProcess_PreTransformVertices | aiProcess_SortByPType);
+  // The C API keeps assimp's C++ types (and its exceptions) out of our headers. Only positions matter
+  // here: normals, texture coordinates and colours are dropped first, so that vertices which differ only
+  // in those (every corner of an STL file carries its face normal) are joined into one.
+  aiPropertyStore* props = aiCreatePropertyStore();
+  aiSetImportPropertyInteger(props, AI_CONFIG_PP_RVC_FLAGS,
+                             aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
+                                 aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
+                                 aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS | aiComponent_MATERIALS);
+  const aiScene* scene = aiImportFileExWithProperties(
+      path.c_str(), aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                        aiProcess_PreTransformVertices | aiProcess_SortByPType,
+      nullptr, props);
+  aiReleasePropertyStore(props);
   if (!scene) {
     error = std::string("cannot read mesh asset '") + path + "' (" + aiGetErrorString() + ")";
     return false;

@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 
 namespace haif {
@@ -80,20 +81,26 @@ std::string resolveAssetPath(const std::string& sceneDir, const std::string& ass
   return sceneDir + "/" + asset;
 }
 
-// Reads an asset into vertices/indices; errors name the field and the resolved file.
-void loadAsset(const JsonNode& shape, const ParseContext& ctx, ShapeDesc& s) {
-  const JsonNode assetNode = shape.member("asset");
-  s.asset = readString(assetNode);
-  if (s.asset.empty()) fail(assetNode, "must name a mesh file");
-  const JsonNode scaleNode = shape.member("scale");
-  if (scaleNode.present()) s.assetScale = readPositiveVec3(scaleNode);
-  const std::string path = resolveAssetPath(ctx.sceneDir, s.asset);
+// Reads the "asset" (and "scale") of `owner` into vertices/indices; errors name the field and the resolved file.
+void readAsset(const JsonNode& owner, const ParseContext& ctx, std::string& asset, Vec3& scale,
+               std::vector<Vec3>& vertices, std::vector<uint32_t>& indices) {
+  const JsonNode assetNode = requireMember(owner, "asset", "a mesh file (OBJ, glTF/GLB, STL, PLY) relative to the scene file");
+  asset = readString(assetNode);
+  if (asset.empty()) fail(assetNode, "must name a mesh file");
+  const JsonNode scaleNode = owner.member("scale");
+  if (scaleNode.present()) scale = readPositiveVec3(scaleNode);
+  const std::string path = resolveAssetPath(ctx.sceneDir, asset);
   {
     std::ifstream probe(path, std::ios::binary);
     if (!probe) fail(assetNode, "cannot open asset file '" + path + "' (" + std::strerror(errno) + ")");
+    if (std::filesystem::is_directory(path)) fail(assetNode, "asset '" + path + "' is a directory, not a mesh file");
   }
   std::string error;
-  if (!importMeshAsset(path, s.assetScale, s.meshVertices, s.meshIndices, error)) fail(assetNode, error);
+  if (!importMeshAsset(path, scale, vertices, indices, error)) fail(assetNode, error);
+}
+
+void loadAsset(const JsonNode& shape, const ParseContext& ctx, ShapeDesc& s) {
+  readAsset(shape, ctx, s.asset, s.assetScale, s.meshVertices, s.meshIndices);
 }
 
 }  // namespace
@@ -203,7 +210,8 @@ float parseMass(const JsonNode& node, MotionType motion) {
 }
 
 BodyDesc parseBody(const JsonNode& node, const ParseContext& ctx) {
-  checkKeys(node, {"name", "type", "shape", "position", "orientation", "velocity", "angular_velocity", "mass", "material", "damping"});
+  checkKeys(node, {"name", "type", "shape", "position", "orientation", "velocity", "angular_velocity", "mass", "material",
+                   "damping", "render_mesh"});
   BodyDesc b;
   b.where = node.place;
   if (node.member("name").present()) b.name = readString(node.member("name"));
@@ -222,6 +230,13 @@ BodyDesc parseBody(const JsonNode& node, const ParseContext& ctx) {
   if (node.member("mass").present()) b.mass = parseMass(node.member("mass"), b.motion);
   if (node.member("material").present()) b.material = parseMaterialRef(node.member("material"), ctx);
   if (node.member("damping").present()) parseDamping(node.member("damping"), b);
+  const JsonNode render = node.member("render_mesh");
+  if (render.present()) {
+    requireObject(render);
+    checkKeys(render, {"asset", "scale"});
+    RenderMeshDesc& r = b.renderMesh;
+    readAsset(render, ctx, r.asset, r.scale, r.vertices, r.indices);
+  }
   return b;
 }
 

@@ -3,6 +3,8 @@
 #include "collision/convex_hull.h"
 #include "collision/triangle_mesh.h"
 
+#include <algorithm>
+
 namespace haif {
 
 WorldSettings worldSettingsFor(const SceneDesc& scene) {
@@ -25,6 +27,47 @@ BodyKind kindOf(MotionType m) {
     case MotionType::Kinematic: return BodyKind::Kinematic;
     default: return BodyKind::Dynamic;
   }
+}
+
+// The joint's world anchors and axis from the scene description, then its frames at the bodies' poses.
+bool addSceneJoint(const SceneDesc& scene, const JointDesc& j, uint32_t firstBody, World& world, std::string& error) {
+  auto id = [&](int32_t i) { return i < 0 ? kWorldBody : firstBody + uint32_t(i); };
+  auto sceneXf = [&](int32_t i) {
+    Transform t;
+    if (i >= 0) {
+      t.p = scene.bodies[size_t(i)].position;
+      t.q = scene.bodies[size_t(i)].orientation.normalized();
+    }
+    return t;
+  };
+  const Vec3 anchorA = j.localAnchors ? sceneXf(j.bodyA).apply(j.anchorA) : j.anchorA;
+  const Vec3 anchorB = j.localAnchors ? sceneXf(j.bodyB).apply(j.anchorB) : j.anchorB;
+  const Vec3 axis = j.localAxis ? sceneXf(j.bodyA).rotate(j.axis) : j.axis;
+  const uint32_t a = id(j.bodyA), b = id(j.bodyB);
+  const Transform xa = a == kWorldBody ? Transform{} : world.bodies().xf[a];
+  const Transform xb = b == kWorldBody ? Transform{} : world.bodies().xf[b];
+  JointDef d = jointAtWorld(j.params.type, a, b, xa, xb, anchorA, axis, anchorB);
+  if (j.localAnchors) d.localAnchorB = xb.applyInverse(anchorB);  // B's point as given, even if apart from A's
+  const JointDef geometry = d;
+  d = j.params;
+  d.bodyA = a;
+  d.bodyB = b;
+  d.localAnchorA = geometry.localAnchorA;
+  d.localAnchorB = geometry.localAnchorB;
+  d.localFrameA = geometry.localFrameA;
+  d.localFrameB = geometry.localFrameB;
+  if (d.type == JointType::Distance) {
+    // Unset bounds come from the initial distance, widened to include the other bound.
+    const float len = (anchorB - anchorA).norm();
+    if (d.minDistance < 0.0f) d.minDistance = d.maxDistance >= 0.0f ? std::min(len, d.maxDistance) : len;
+    if (d.maxDistance < 0.0f) d.maxDistance = std::max(len, d.minDistance);
+    if (!(d.maxDistance > 0.0f)) {
+      error = scene.sourcePath + ": " + j.where + ": the anchors coincide; a distance joint needs a length > 0";
+      return false;
+    }
+  }
+  world.addJoint(d);
+  return true;
 }
 
 }  // namespace
@@ -78,11 +121,14 @@ bool bodyDefFor(const SceneDesc& scene, const BodyDesc& b, BodyDef& def, std::st
 }
 
 bool buildWorld(const SceneDesc& scene, World& world, std::string& error) {
+  const uint32_t firstBody = world.bodyCount();
   for (const BodyDesc& b : scene.bodies) {
     BodyDef def;
     if (!bodyDefFor(scene, b, def, error)) return false;
     world.addBody(def);
   }
+  for (const JointDesc& j : scene.joints)
+    if (!addSceneJoint(scene, j, firstBody, world, error)) return false;
   for (const WaterDesc& w : scene.water) {
     WaterVolume v;
     v.box = {w.lo, w.hi};

@@ -4,6 +4,7 @@
 
 #include "collision/shape.h"
 #include "core/math.h"
+#include "dynamics/joint.h"
 
 #include <cstdint>
 #include <string>
@@ -34,6 +35,14 @@ struct ShapeDesc {
   Vec3 assetScale = Vec3::Ones();
 };
 
+/// A mesh drawn in place of a body's collision shape (the body still collides as its shape).
+struct RenderMeshDesc {
+  std::string asset;             ///< as written in the scene file; empty: draw the collision shape
+  Vec3 scale = Vec3::Ones();
+  std::vector<Vec3> vertices;    ///< body frame (the scene body's position and orientation)
+  std::vector<uint32_t> indices;
+};
+
 struct BodyDesc {
   std::string name;
   MotionType motion = MotionType::Dynamic;
@@ -46,6 +55,7 @@ struct BodyDesc {
   uint32_t material = 0;                ///< index into SceneDesc::materials
   float linearDamping = 0.0f;           ///< 1/s
   float angularDamping = 0.0f;          ///< 1/s
+  RenderMeshDesc renderMesh;
   std::string where;                    ///< place in the scene file, e.g. "bodies[3]" or "generators[1] box 17"
 };
 
@@ -55,6 +65,22 @@ struct WaterDesc {
   float density = 1000.0f;
   float linearDrag = 1.0f;   ///< 1/s, scaled by submerged fraction
   float angularDrag = 0.5f;  ///< 1/s
+};
+
+/// A joint as the scene file gives it. The joint's rest pose is the bodies' initial pose: fixed and
+/// slider joints keep the relative orientation they start with, hinge and twist angles count from it.
+struct JointDesc {
+  std::string name;
+  int32_t bodyA = -1, bodyB = -1;  ///< index into SceneDesc::bodies; -1: the world
+  bool localAnchors = false;       ///< false: world points; true: points in each body's frame (scene body origin)
+  Vec3 anchorA = Vec3::Zero();     ///< where the joint sits on A (and on B unless anchorB differs: distance joints)
+  Vec3 anchorB = Vec3::Zero();
+  bool localAxis = false;          ///< false: world direction; true: in body A's frame
+  Vec3 axis = Vec3::UnitX();       ///< hinge axis, slider direction, cone-twist twist axis
+  /// Type, limits, motor, servo, break thresholds and collideConnected; bodies, anchors and frames are
+  /// filled when the World is built. A negative min/max distance stands for the initial anchor distance.
+  JointDef params;
+  std::string where;               ///< place in the scene file, e.g. "joints[3]"
 };
 
 struct SimSettings {
@@ -83,6 +109,7 @@ struct SceneDesc {
   std::vector<MaterialDesc> materials;  ///< materials[0] always exists ("default")
   std::vector<BodyDesc> bodies;
   std::vector<WaterDesc> water;
+  std::vector<JointDesc> joints;
   CameraDesc camera;
 };
 

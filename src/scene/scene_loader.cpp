@@ -2,6 +2,7 @@
 
 #include "scene/body_parse.h"
 #include "scene/generator_parse.h"
+#include "scene/joint_parse.h"
 #include "scene/json_positions.h"
 #include "scene/json_reader.h"
 #include "scene/scene_validate.h"
@@ -132,7 +133,7 @@ WaterDesc parseWater(const JsonNode& node) {
 // Reads the whole document; throws SceneError at the first problem.
 void parseDocument(const JsonNode& root, ParseContext& ctx, SceneDesc& scene) {
   if (!root.json().is_object()) fail(root, "a scene file must hold one JSON object {...} (got " + describeValue(root.json()) + ")");
-  checkKeys(root, {"name", "description", "settings", "materials", "camera", "bodies", "water", "generators"});
+  checkKeys(root, {"name", "description", "settings", "materials", "camera", "bodies", "water", "generators", "joints"});
   if (root.member("name").present()) scene.name = readString(root.member("name"));
   if (root.member("description").present()) readString(root.member("description"));
   if (root.member("settings").present()) parseSettings(root.member("settings"), scene.settings);
@@ -160,6 +161,12 @@ void parseDocument(const JsonNode& root, ParseContext& ctx, SceneDesc& scene) {
     requireArray(water);
     for (size_t i = 0; i < water.size(); ++i) scene.water.push_back(parseWater(water.element(i)));
   }
+  const JsonNode joints = root.member("joints");  // after the bodies: joints name them
+  if (joints.present()) {
+    requireArray(joints);
+    const BodyNames names(scene);
+    for (size_t i = 0; i < joints.size(); ++i) scene.joints.push_back(parseJoint(joints.element(i), scene, names));
+  }
   scene.materials = ctx.materials;
 }
 
@@ -168,6 +175,7 @@ std::string issuePointer(const SceneIssue& issue, const ParseContext& ctx) {
   std::string base;
   if (issue.body >= 0 && static_cast<size_t>(issue.body) < ctx.bodyPointers.size()) base = ctx.bodyPointers[static_cast<size_t>(issue.body)];
   else if (issue.water >= 0) base = "/water/" + std::to_string(issue.water);
+  else if (issue.joint >= 0) base = "/joints/" + std::to_string(issue.joint);
   std::string field = issue.field;
   for (char& c : field)
     if (c == '.') c = '/';

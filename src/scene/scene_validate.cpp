@@ -13,6 +13,10 @@ std::string SceneIssue::describe(const SceneDesc& scene) const {
     place = w.empty() ? "bodies[" + std::to_string(body) + "]" : w;
   } else if (water >= 0) {
     place = "water[" + std::to_string(water) + "]";
+  } else if (joint >= 0) {
+    place = joint < static_cast<int>(scene.joints.size()) && !scene.joints[size_t(joint)].where.empty()
+                ? scene.joints[size_t(joint)].where
+                : "joints[" + std::to_string(joint) + "]";
   }
   if (!field.empty()) place += (place.empty() ? "" : ".") + field;
   return (place.empty() ? "scene" : place) + ": " + message;
@@ -53,10 +57,12 @@ struct Checker {
   SceneIssue& issue;
   int body = -1;
   int water = -1;
+  int joint = -1;
 
   bool bad(const std::string& field, const std::string& message) {
     issue.body = body;
     issue.water = water;
+    issue.joint = joint;
     issue.field = field;
     issue.message = message;
     return false;
@@ -123,6 +129,14 @@ bool checkBody(Checker& c, const SceneDesc& scene, const BodyDesc& b) {
     return c.bad("material", "material index " + std::to_string(b.material) + " is out of range");
   if (!c.nonNegative("damping.linear", b.linearDamping) || !c.nonNegative("damping.angular", b.angularDamping)) return false;
   if (!checkShape(c, b.shape, b.motion)) return false;
+  if (!b.renderMesh.asset.empty()) {
+    if (b.renderMesh.indices.empty() || b.renderMesh.indices.size() % 3 != 0)
+      return c.bad("render_mesh.asset", "a render mesh needs triangles");
+    for (const Vec3& v : b.renderMesh.vertices)
+      if (!c.finiteVec("render_mesh.asset", v)) return false;
+    for (uint32_t i : b.renderMesh.indices)
+      if (i >= b.renderMesh.vertices.size()) return c.bad("render_mesh.asset", "index out of range");
+  }
   if (!c.isFiniteNum("mass", b.mass)) return false;
   if (b.motion == MotionType::Dynamic) {
     if (b.mass < 0.0f) return c.bad("mass", "must be > 0 for a dynamic body (got " + formatNumber(b.mass) + ")");
@@ -133,6 +147,27 @@ bool checkBody(Checker& c, const SceneDesc& scene, const BodyDesc& b) {
       return c.bad(b.linearVelocity.isZero() ? "angular_velocity" : "velocity",
                    "a static body cannot move (make it \"kinematic\" to give it a velocity)");
   }
+  return true;
+}
+
+bool checkJoint(Checker& c, const SceneDesc& scene, const JointDesc& j) {
+  const int32_t n = static_cast<int32_t>(scene.bodies.size());
+  if (j.bodyA < -1 || j.bodyA >= n) return c.bad("body_a", "body index " + std::to_string(j.bodyA) + " is out of range");
+  if (j.bodyB < -1 || j.bodyB >= n) return c.bad("body_b", "body index " + std::to_string(j.bodyB) + " is out of range");
+  if (j.bodyA == j.bodyB) return c.bad("body_b", "a joint needs two different bodies");
+  auto dynamic = [&](int32_t i) { return i >= 0 && scene.bodies[size_t(i)].motion == MotionType::Dynamic; };
+  if (!dynamic(j.bodyA) && !dynamic(j.bodyB)) return c.bad("body_b", "a joint needs a dynamic body");
+  if (!c.finiteVec("anchor", j.anchorA) || !c.finiteVec("anchor", j.anchorB) || !c.finiteVec("axis", j.axis)) return false;
+  if (!(j.axis.norm() > 1e-6f)) return c.bad("axis", "must not be the zero vector");
+  const JointDef& p = j.params;
+  for (float v : {p.lower, p.upper, p.minDistance, p.maxDistance, p.swingLimit, p.twistLower, p.twistUpper, p.motorSpeed})
+    if (!c.isFiniteNum("limits", v)) return false;
+  if (p.limitEnabled && p.lower > p.upper) return c.bad("limits", "upper must be >= lower");
+  if (p.twistLower > p.twistUpper) return c.bad("twist", "upper must be >= lower");
+  if (p.motorEnabled && !(p.maxMotorForce > 0.0f)) return c.bad("motor.max_force", "must be > 0");
+  for (size_t i = 1; i < p.servo.size(); ++i)
+    if (!(p.servo[i].time > p.servo[i - 1].time)) return c.bad("servo.keys", "times must increase");
+  if (!(p.breakForce > 0.0f) || !(p.breakTorque > 0.0f)) return c.bad("break_force", "must be > 0");
   return true;
 }
 
@@ -172,6 +207,11 @@ bool validateScene(const SceneDesc& scene, SceneIssue& issue) {
     if (!c.positive("density", w.density) || !c.nonNegative("linear_drag", w.linearDrag) ||
         !c.nonNegative("angular_drag", w.angularDrag))
       return false;
+  }
+  c.water = -1;
+  for (size_t i = 0; i < scene.joints.size(); ++i) {
+    c.joint = static_cast<int>(i);
+    if (!checkJoint(c, scene, scene.joints[i])) return false;
   }
   return true;
 }

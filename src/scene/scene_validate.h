@@ -13,6 +13,7 @@ namespace haif {
 struct SceneIssue {
   int body = -1;        ///< index into SceneDesc::bodies, or -1 for scene-level issues
   int water = -1;       ///< index into SceneDesc::water, or -1
+  int joint = -1;       ///< index into SceneDesc::joints, or -1
   std::string field;    ///< scene-file key path of the value, e.g. "mass", "shape.radius", "settings.dt"
   std::string message;  ///< what is wrong, e.g. "must be > 0 (got -2)"
 
@@ -20,7 +21,7 @@ struct SceneIssue {
   std::string describe(const SceneDesc& scene) const;
 };
 
-/// Checks settings, materials, bodies and water volumes. Returns false and fills `issue` with the first problem.
+/// Checks settings, materials, bodies, water volumes and joints. Returns false and fills `issue` with the first problem.
 bool validateScene(const SceneDesc& scene, SceneIssue& issue);
 
 /// True for shapes only a static body may have (planes, triangle meshes).

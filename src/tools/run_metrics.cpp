@@ -27,6 +27,14 @@ bool RunMetrics::afterStep(const World& world) {
       ++penCount_;
     }
   }
+  for (uint32_t j = 0; j < world.jointCount(); ++j) {
+    if (world.joint(j).broken) continue;
+    const JointError e = world.jointError(j);
+    maxJointM_ = std::max(maxJointM_, double(e.linear));
+    maxJointRad_ = std::max(maxJointRad_, double(e.angular));
+    jointSq_ += double(e.linear) * double(e.linear);
+    ++jointCount_;
+  }
   const uint64_t window = static_cast<uint64_t>(std::lround(1.0 / world.settings().dt));
   const bool last = plannedSteps_ <= window || steps_ > plannedSteps_ - window;
   for (size_t i = 0; i < b.size(); ++i) {

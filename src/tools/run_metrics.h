@@ -3,6 +3,7 @@
 
 #include "haif/world.h"
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -23,6 +24,10 @@ class RunMetrics {
   double rmsVelocityLastSecond() const { return velCount_ ? std::sqrt(velSq_ / double(velCount_)) : 0.0; }
   bool nanDetected() const { return nan_; }
   double energyDriftRelative(const World& world) const;        ///< (E - E0) / E0, total mechanical energy
+  /// Joint error (DESIGN.md §5) after each step over the unbroken joints: anchor separation and angle.
+  double maxJointError() const { return maxJointM_; }          ///< m
+  double rmsJointError() const { return jointCount_ ? std::sqrt(jointSq_ / double(jointCount_)) : 0.0; }  ///< m
+  double maxJointErrorAngle() const { return maxJointRad_; }   ///< rad
 
  private:
   std::vector<float> startY_;
@@ -32,6 +37,8 @@ class RunMetrics {
   double velSq_ = 0;
   uint64_t velCount_ = 0;
   bool nan_ = false;
+  double maxJointM_ = 0, maxJointRad_ = 0, jointSq_ = 0;
+  uint64_t jointCount_ = 0;
   double e0_ = 0;
 };
 

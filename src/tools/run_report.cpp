@@ -29,18 +29,20 @@ std::string statsCsv(const std::vector<StepStats>& steps) {
   std::string out =
       "step,collision_ms,solve_ms,integrate_ms,total_ms,budget_ms,deadline_miss,iterations_chosen,"
       "iterations_min,iterations_mean,iterations_max,row_iterations,residual,solve_error,islands,"
-      "largest_island,awake_bodies,sleeping_bodies,contacts,contact_points,new_pairs,stages\n";
+      "largest_island,awake_bodies,sleeping_bodies,contacts,contact_points,new_pairs,stages,joint_error_m,"
+      "joint_error_rad\n";
   char line[512];
   for (const StepStats& s : steps) {
     char err[32];
     if (std::isnan(s.solveError)) err[0] = '\0';
     else std::snprintf(err, sizeof err, "%.6g", s.solveError);
     std::snprintf(line, sizeof line,
-                  "%llu,%.4f,%.4f,%.4f,%.4f,%.3f,%d,%d,%d,%.3f,%d,%llu,%.6g,%s,%u,%u,%u,%u,%u,%u,%u,%s\n",
+                  "%llu,%.4f,%.4f,%.4f,%.4f,%.3f,%d,%d,%d,%.3f,%d,%llu,%.6g,%s,%u,%u,%u,%u,%u,%u,%u,%s,%.6g,%.6g\n",
                   (unsigned long long)s.step, s.collisionMs, s.solveMs, s.integrateMs, s.totalMs, s.budgetMs,
                   s.deadlineMiss ? 1 : 0, s.iterationsChosen, s.iterationsMin, s.iterationsMean, s.iterationsMax,
                   (unsigned long long)s.rowIterations, double(s.residual), err, s.islands, s.largestIsland,
-                  s.awakeBodies, s.sleepingBodies, s.contacts, s.contactPoints, s.newPairs, stageNames(s.stages).c_str());
+                  s.awakeBodies, s.sleepingBodies, s.contacts, s.contactPoints, s.newPairs, stageNames(s.stages).c_str(),
+                  double(s.jointErrorM), double(s.jointErrorRad));
     out += line;
   }
   return out;
@@ -95,6 +97,13 @@ std::string summaryJson(const RunInfo& info, const std::vector<StepStats>& steps
   else j["solve_error_mean"] = nullptr;
   j["solve_error_samples"] = errCount;
   j["energy_drift_relative"] = m.energyDriftRelative(world);
+  uint32_t broken = 0;
+  for (uint32_t i = 0; i < world.jointCount(); ++i) broken += world.joint(i).broken ? 1u : 0u;
+  j["joints"] = world.jointCount();
+  j["joints_broken"] = broken;
+  j["max_joint_error_m"] = m.maxJointError();
+  j["rms_joint_error_m"] = m.rmsJointError();
+  j["max_joint_error_rad"] = m.maxJointErrorAngle();
   j["nan_detected"] = m.nanDetected();
   char hash[32];
   std::snprintf(hash, sizeof hash, "%016llx", (unsigned long long)info.stateHash);

@@ -179,7 +179,7 @@ TEST(SceneFiles, TheDocumentedExampleLoads) {
   std::stringstream doc;
   doc << in.rdbuf();
   const std::string text = doc.str();
-  const size_t begin = text.find("```json\n");
+  const size_t begin = text.find("```json\n", text.find("## Example"));
   ASSERT_NE(begin, std::string::npos);
   const size_t end = text.find("```", begin + 8);
   const SceneDesc s = parseOk(text.substr(begin + 8, end - begin - 8));

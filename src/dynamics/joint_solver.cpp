@@ -1,0 +1,572 @@
+#include "dynamics/joint_solver.h"
+
+#include "dynamics/joint_tree.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace haif {
+
+const char* jointTypeName(JointType t) {
+  switch (t) {
+    case JointType::Ball: return "ball";
+    case JointType::Hinge: return "hinge";
+    case JointType::Fixed: return "fixed";
+    case JointType::Distance: return "distance";
+    case JointType::Slider: return "slider";
+    case JointType::ConeTwist: return "cone_twist";
+    default: return "?";
+  }
+}
+
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr double kRedundantPivot = 1e-5;  // relative to the largest diagonal entry
+
+inline Transform transformOf(const BodyStore& b, uint32_t i) { return i == kWorldBody ? Transform{} : b.xf[i]; }
+
+inline float wrapAngle(float a) {
+  while (a > kPi) a -= 2.0f * kPi;
+  while (a < -kPi) a += 2.0f * kPi;
+  return a;
+}
+
+/// World-space anchors, lever arms and joint frames of a joint at the current transforms.
+struct JointGeometry {
+  Vec3 pA, pB;          // anchors
+  Vec3 rA, rB;          // anchor minus centre of mass
+  Quat fA, fB;          // joint frames
+  Vec3 axisA, axisB;    // frame x
+  Vec3 refA, refB;      // frame y
+};
+
+JointGeometry geometryOf(const BodyStore& bodies, const JointDef& d) {
+  const Transform xa = transformOf(bodies, d.bodyA), xb = transformOf(bodies, d.bodyB);
+  JointGeometry g;
+  g.rA = xa.rotate(d.localAnchorA);
+  g.rB = xb.rotate(d.localAnchorB);
+  g.pA = xa.p + g.rA;
+  g.pB = xb.p + g.rB;
+  g.fA = (xa.q * d.localFrameA).normalized();
+  g.fB = (xb.q * d.localFrameB).normalized();
+  g.axisA = g.fA * Vec3::UnitX();
+  g.axisB = g.fB * Vec3::UnitX();
+  g.refA = g.fA * Vec3::UnitY();
+  g.refB = g.fB * Vec3::UnitY();
+  return g;
+}
+
+/// Rotation (axis times angle, world) that carries frame A onto frame B.
+Vec3 rotationError(const JointGeometry& g) {
+  Quat e = g.fB * g.fA.conjugate();
+  if (e.w() < 0.0f) e.coeffs() = -e.coeffs();
+  const float s = e.vec().norm();
+  if (s < 1e-6f) return 2.0f * e.vec();
+  return (2.0f * std::atan2(s, e.w()) / s) * e.vec();
+}
+
+/// Twist of frame B about the axis of frame A (rad): the twist part of the relative rotation.
+float twistAngle(const JointGeometry& g) {
+  const Quat r = g.fA.conjugate() * g.fB;
+  return wrapAngle(2.0f * std::atan2(r.x(), r.w()));
+}
+
+float hingeAngle(const JointGeometry& g) {
+  return std::atan2(g.axisA.dot(g.refA.cross(g.refB)), g.refA.dot(g.refB));
+}
+
+float swingAngle(const JointGeometry& g) { return std::acos(std::clamp(g.axisA.dot(g.axisB), -1.0f, 1.0f)); }
+
+/// Servo target position and speed at time t (piecewise linear through the keys).
+void servoTarget(const JointDef& d, float t, float& position, float& speed) {
+  const std::vector<ServoKey>& k = d.servo;
+  const float end = k.back().time;
+  if (d.servoLoop && end > 0.0f) t = std::fmod(std::max(t, 0.0f), end);
+  if (t <= k.front().time) {
+    position = k.front().position;
+    speed = 0.0f;
+    return;
+  }
+  for (size_t i = 1; i < k.size(); ++i) {
+    if (t <= k[i].time) {
+      const float span = k[i].time - k[i - 1].time;
+      const float u = span > 0.0f ? (t - k[i - 1].time) / span : 1.0f;
+      position = k[i - 1].position + u * (k[i].position - k[i - 1].position);
+      speed = span > 0.0f ? (k[i].position - k[i - 1].position) / span : 0.0f;
+      return;
+    }
+  }
+  position = k.back().position;
+  speed = 0.0f;
+}
+
+struct RowBuilder {
+  float mA, mB;
+  Mat3 iA, iB;
+
+  JointRow linear(const Vec3& dir, const Vec3& armA, const Vec3& armB) const {
+    JointRow r;
+    r.lin = dir;
+    r.angA = armA.cross(dir);
+    r.angB = armB.cross(dir);
+    r.iAngA = iA * r.angA;
+    r.iAngB = iB * r.angB;
+    return r;
+  }
+  JointRow angular(const Vec3& axis) const {
+    JointRow r;
+    r.lin = Vec3::Zero();
+    r.angA = r.angB = axis;
+    r.iAngA = iA * axis;
+    r.iAngB = iB * axis;
+    return r;
+  }
+  double k(const JointRow& x, const JointRow& y) const {
+    return double(mA + mB) * double(x.lin.dot(y.lin)) + double(x.angA.dot(y.iAngA)) + double(x.angB.dot(y.iAngB));
+  }
+  JointRow negated(JointRow r) const {
+    r.lin = -r.lin;
+    r.angA = -r.angA;
+    r.angB = -r.angB;
+    r.iAngA = -r.iAngA;
+    r.iAngB = -r.iAngB;
+    return r;
+  }
+};
+
+/// Inverse of the block's effective mass J M^-1 J^T, in double precision.
+void invertBlock(const RowBuilder& rb, JointConstraint& jc) {
+  const int m = jc.blockRows;
+  double K[kJointBlockRows * kJointBlockRows], inv[kJointBlockRows * kJointBlockRows];
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j <= i; ++j) K[i * m + j] = K[j * m + i] = rb.k(jc.block[i], jc.block[j]);
+  double maxDiag = 0.0;
+  for (int i = 0; i < m; ++i) maxDiag = std::max(maxDiag, K[i * m + i]);
+  invertSymmetric(K, m, kRedundantPivot * maxDiag, inv);
+  for (int i = 0; i < m * m; ++i) jc.blockInvK[i] = float(inv[i]);
+}
+
+}  // namespace
+
+JointDef jointAtWorld(JointType type, uint32_t bodyA, uint32_t bodyB, const Transform& xfA, const Transform& xfB,
+                      const Vec3& anchor, const Vec3& axis, const Vec3& anchorB) {
+  JointDef d;
+  d.type = type;
+  d.bodyA = bodyA;
+  d.bodyB = bodyB;
+  d.localAnchorA = xfA.applyInverse(anchor);
+  d.localAnchorB = xfB.applyInverse(type == JointType::Distance ? anchorB : anchor);
+  // World joint frame: x along the axis, y any perpendicular; expressed in each body's frame.
+  const Vec3 x = axis.squaredNorm() > 0.0f ? Vec3(axis.normalized()) : Vec3::UnitX();
+  Vec3 y, z;
+  orthonormalBasis(x, y, z);
+  Mat3 R;
+  R.col(0) = x;
+  R.col(1) = y;
+  R.col(2) = x.cross(y);
+  const Quat world(R);
+  d.localFrameA = (xfA.q.conjugate() * world).normalized();
+  d.localFrameB = (xfB.q.conjugate() * world).normalized();
+  if (type == JointType::Distance) d.minDistance = d.maxDistance = (anchorB - anchor).norm();
+  return d;
+}
+
+void invertSymmetric(const double* K, int m, double tol, double* inverse) {
+  double L[kJointBlockRows][kJointBlockRows] = {}, D[kJointBlockRows];
+  for (int k = 0; k < m; ++k) {
+    double d = K[k * m + k];
+    for (int j = 0; j < k; ++j) d -= L[k][j] * L[k][j] * D[j];
+    D[k] = d > tol ? d : 0.0;
+    L[k][k] = 1.0;
+    for (int i = k + 1; i < m; ++i) {
+      double s = K[i * m + k];
+      for (int j = 0; j < k; ++j) s -= L[i][j] * L[k][j] * D[j];
+      L[i][k] = D[k] > 0.0 ? s / D[k] : 0.0;
+    }
+  }
+  // X = L^-1 (unit lower triangular), then K^+ = X^T D^+ X.
+  double X[kJointBlockRows][kJointBlockRows] = {};
+  for (int c = 0; c < m; ++c) {
+    X[c][c] = 1.0;
+    for (int i = c + 1; i < m; ++i) {
+      double s = 0.0;
+      for (int j = c; j < i; ++j) s -= L[i][j] * X[j][c];
+      X[i][c] = s;
+    }
+  }
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) {
+      double s = 0.0;
+      for (int k = std::max(i, j); k < m; ++k)
+        if (D[k] > 0.0) s += X[k][i] * X[k][j] / D[k];
+      inverse[i * m + j] = s;
+    }
+}
+
+uint32_t jointRowCount(const JointDef& d) {
+  const uint32_t motor = d.motorEnabled ? 1u : 0u, limits = d.limitEnabled ? 2u : 0u;
+  switch (d.type) {
+    case JointType::Ball: return 3;
+    case JointType::Hinge: return 5 + motor + limits;
+    case JointType::Fixed: return 6;
+    case JointType::Slider: return 5 + motor + limits;
+    case JointType::Distance: return d.minDistance == d.maxDistance ? 1 : 2;
+    case JointType::ConeTwist: return 6;
+    default: return 0;
+  }
+}
+
+float jointPosition(const BodyStore& bodies, const JointDef& d) {
+  const JointGeometry g = geometryOf(bodies, d);
+  if (d.type == JointType::Hinge) return hingeAngle(g);
+  if (d.type == JointType::Slider) return g.axisA.dot(g.pB - g.pA);
+  return 0.0f;
+}
+
+void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* stiffness) {
+  const float f = j.lastForce.norm();
+  if (j.broken || !(f > 0.0f)) return;
+  const JointDef& d = j.def;
+  if (d.bodyA != kWorldBody) stiffness[d.bodyA] += f * (bodies.xf[d.bodyA].rotate(d.localAnchorA)).norm();
+  if (d.bodyB != kWorldBody) stiffness[d.bodyB] += f * (bodies.xf[d.bodyB].rotate(d.localAnchorB)).norm();
+}
+
+void stiffenInertia(BodyStore& bodies, uint32_t body, float stiffness, float dt) {
+  const float k = stiffness * dt * dt;
+  if (!(k > 0.0f) || bodies.kind[body] != BodyKind::Dynamic) return;
+  const Mat3 I = bodies.invInertiaWorld[body].inverse();
+  bodies.invInertiaWorld[body] = (I + k * Mat3::Identity()).inverse();
+}
+
+void prepareJoint(const BodyStore& bodies, const Joint& j, uint32_t ji, const SolverParams& p,
+                  const JointSolverParams& jp, float time, JointConstraint& jc) {
+  const JointDef& d = j.def;
+  const uint32_t a = d.bodyA, b = d.bodyB;
+  jc.a = a;
+  jc.b = b;
+  jc.joint = ji;
+  jc.dynA = a != kWorldBody && bodies.kind[a] == BodyKind::Dynamic && !bodies.asleep[a];
+  jc.dynB = b != kWorldBody && bodies.kind[b] == BodyKind::Dynamic && !bodies.asleep[b];
+  RowBuilder rb;
+  rb.mA = jc.invMassA = jc.dynA ? bodies.invMass[a] : 0.0f;
+  rb.mB = jc.invMassB = jc.dynB ? bodies.invMass[b] : 0.0f;
+  rb.iA = jc.dynA ? bodies.invInertiaWorld[a] : Mat3::Zero();
+  rb.iB = jc.dynB ? bodies.invInertiaWorld[b] : Mat3::Zero();
+  const JointGeometry g = geometryOf(bodies, d);
+  const float invDt = 1.0f / p.dt;
+  const float beta = jp.beta * invDt;
+  const Vec3 sep = g.pB - g.pA;
+
+  int m = 0;
+  float C[kJointBlockRows];
+  auto pointRows = [&] {
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 e = Vec3::Unit(k);
+      jc.block[m] = rb.linear(e, g.rA, g.rB);
+      C[m++] = sep[k];
+    }
+  };
+  auto lockRotation = [&] {
+    const Vec3 e = rotationError(g);
+    for (int k = 0; k < 3; ++k) {
+      jc.block[m] = rb.angular(Vec3::Unit(k));
+      C[m++] = e[k];
+    }
+  };
+  switch (d.type) {
+    case JointType::Ball:
+    case JointType::ConeTwist: pointRows(); break;
+    case JointType::Hinge: {
+      pointRows();
+      Vec3 t1, t2;
+      orthonormalBasis(g.axisA, t1, t2);
+      const Vec3 e = g.axisA.cross(g.axisB);  // rotation carrying A's axis onto B's
+      jc.block[m] = rb.angular(t1);
+      C[m++] = e.dot(t1);
+      jc.block[m] = rb.angular(t2);
+      C[m++] = e.dot(t2);
+      break;
+    }
+    case JointType::Fixed:
+      pointRows();
+      lockRotation();
+      break;
+    case JointType::Slider: {
+      // B's anchor stays on A's axis: the arm on A reaches to B's anchor.
+      Vec3 t1, t2;
+      orthonormalBasis(g.axisA, t1, t2);
+      const Vec3 armA = g.rA + sep;
+      jc.block[m] = rb.linear(t1, armA, g.rB);
+      C[m++] = sep.dot(t1);
+      jc.block[m] = rb.linear(t2, armA, g.rB);
+      C[m++] = sep.dot(t2);
+      lockRotation();
+      break;
+    }
+    case JointType::Distance: {
+      const float len = sep.norm();
+      if (d.minDistance == d.maxDistance && len > 1e-6f) {
+        jc.block[m] = rb.linear(sep / len, g.rA, g.rB);
+        C[m++] = len - d.minDistance;
+      }
+      break;
+    }
+    default: break;
+  }
+  jc.blockRows = m;
+  jc.inTree = false;
+  // Soft constraint coefficients (spring-damper solved implicitly): used when the joint is not in a tree.
+  const float omega = 2.0f * kPi * jp.softHertz, h = p.dt;
+  const float a1 = 2.0f * jp.softDampingRatio + h * omega, a2 = h * omega * a1, a3 = 1.0f / (1.0f + a2);
+  jc.treeBiasRate = beta;
+  jc.softBiasRate = omega / a1;
+  jc.massScale = a2 * a3;
+  jc.impulseScale = a3;
+  for (int i = 0; i < m; ++i) {
+    jc.blockError[i] = C[i];
+    jc.blockImpulse[i] = p.warmStart ? j.blockImpulse[i] : 0.0f;
+  }
+  if (m > 0) invertBlock(rb, jc);
+
+  // Limit and motor rows. A limit is a one-sided row on the distance to it, C >= 0: while C > 0 the
+  // bound may be approached by at most C this step (speculative, no bounce), past it Baumgarte pushes back.
+  int e = 0;
+  jc.motor = false;
+  auto addRow = [&](const JointRow& row, int slot, float bias, float relaxBias, float lo, float hi) {
+    jc.extra[e] = row;
+    const double k = rb.k(row, row);
+    jc.extraMass[e] = k > 0.0 ? float(1.0 / k) : 0.0f;
+    jc.extraBias[e] = bias;
+    jc.extraRelaxBias[e] = relaxBias;
+    jc.extraLo[e] = lo;
+    jc.extraHi[e] = hi;
+    jc.extraImpulse[e] = p.warmStart ? std::clamp(j.extraImpulse[slot], lo, hi) : 0.0f;
+    jc.extraSlot[e] = int8_t(slot);
+    ++e;
+  };
+  auto addLimit = [&](const JointRow& row, int slot, float c) {
+    const float bias = c > 0.0f ? c * invDt : beta * c;
+    addRow(row, slot, bias, c > 0.0f ? c * invDt : 0.0f, 0.0f, kInf);
+  };
+  auto addMotor = [&](const JointRow& row, float position, bool angle) {
+    float speed = d.motorSpeed;
+    if (!d.servo.empty()) {
+      // Aim at the trajectory: its speed plus the position error closed in servoTime.
+      float target, slope;
+      servoTarget(d, time - p.dt, target, slope);
+      const float err = angle ? wrapAngle(target - position) : target - position;
+      speed = slope + err / std::max(d.servoTime, p.dt);
+    }
+    const float maxImpulse = d.maxMotorForce * p.dt;
+    addRow(row, 0, -speed, -speed, -maxImpulse, maxImpulse);
+    jc.motor = true;
+  };
+  switch (d.type) {
+    case JointType::Hinge: {
+      const JointRow row = rb.angular(g.axisA);
+      const float angle = hingeAngle(g);
+      if (d.motorEnabled) addMotor(row, angle, true);
+      if (d.limitEnabled) {
+        addLimit(row, 1, angle - d.lower);
+        addLimit(rb.negated(row), 2, d.upper - angle);
+      }
+      break;
+    }
+    case JointType::Slider: {
+      const JointRow row = rb.linear(g.axisA, g.rA + sep, g.rB);
+      const float s = g.axisA.dot(sep);
+      if (d.motorEnabled) addMotor(row, s, false);
+      if (d.limitEnabled) {
+        addLimit(row, 1, s - d.lower);
+        addLimit(rb.negated(row), 2, d.upper - s);
+      }
+      break;
+    }
+    case JointType::Distance: {
+      const float len = sep.norm();
+      if (d.minDistance < d.maxDistance && len > 1e-6f) {
+        const JointRow row = rb.linear(sep / len, g.rA, g.rB);
+        if (d.minDistance > 0.0f) addLimit(row, 0, len - d.minDistance);
+        addLimit(rb.negated(row), 1, d.maxDistance - len);
+      }
+      break;
+    }
+    case JointType::ConeTwist: {
+      const Vec3 s = g.axisA.cross(g.axisB);
+      const float swing = swingAngle(g);
+      if (d.swingLimit < kPi && s.norm() > 1e-5f) addLimit(rb.angular(-s.normalized()), 0, d.swingLimit - swing);
+      const Vec3 mid = g.axisA + g.axisB;
+      if ((d.twistLower > -kPi || d.twistUpper < kPi) && mid.norm() > 1e-3f) {
+        const JointRow row = rb.angular(mid.normalized());
+        const float twist = twistAngle(g);
+        addLimit(row, 1, twist - d.twistLower);
+        addLimit(rb.negated(row), 2, d.twistUpper - twist);
+      }
+      break;
+    }
+    default: break;
+  }
+  jc.extraRows = e;
+}
+
+namespace {
+
+struct Velocities {
+  Vec3 va, wa, vb, wb;
+};
+
+inline Velocities load(const BodyStore& bodies, const JointConstraint& c) {
+  Velocities s;
+  s.va = c.a != kWorldBody ? bodies.v[c.a] : Vec3::Zero();
+  s.wa = c.a != kWorldBody ? bodies.w[c.a] : Vec3::Zero();
+  s.vb = c.b != kWorldBody ? bodies.v[c.b] : Vec3::Zero();
+  s.wb = c.b != kWorldBody ? bodies.w[c.b] : Vec3::Zero();
+  return s;
+}
+
+inline void storeBack(BodyStore& bodies, const JointConstraint& c, const Velocities& s) {
+  if (c.dynA) {
+    bodies.v[c.a] = s.va;
+    bodies.w[c.a] = s.wa;
+  }
+  if (c.dynB) {
+    bodies.v[c.b] = s.vb;
+    bodies.w[c.b] = s.wb;
+  }
+}
+
+inline float rowVelocity(const JointRow& r, const Velocities& s) {
+  return r.lin.dot(s.vb - s.va) + r.angB.dot(s.wb) - r.angA.dot(s.wa);
+}
+
+inline void applyRow(const JointConstraint& c, const JointRow& r, float lambda, Velocities& s) {
+  s.va -= (c.invMassA * lambda) * r.lin;
+  s.wa -= lambda * r.iAngA;
+  s.vb += (c.invMassB * lambda) * r.lin;
+  s.wb += lambda * r.iAngB;
+}
+
+}  // namespace
+
+void warmStartJoints(BodyStore& bodies, const JointConstraint* js, size_t n) {
+  for (size_t k = 0; k < n; ++k) {
+    const JointConstraint& c = js[k];
+    Velocities s = load(bodies, c);
+    for (int i = 0; i < c.blockRows; ++i) applyRow(c, c.block[i], c.blockImpulse[i], s);
+    for (int i = 0; i < c.extraRows; ++i) applyRow(c, c.extra[i], c.extraImpulse[i], s);
+    storeBack(bodies, c, s);
+  }
+}
+
+namespace {
+
+float solveExtraRow(BodyStore& bodies, JointConstraint& c, int i, float omega, bool useBias) {
+  Velocities s = load(bodies, c);
+  const float cdot = rowVelocity(c.extra[i], s);
+  const float b = useBias ? c.extraBias[i] : c.extraRelaxBias[i];
+  const float old = c.extraImpulse[i];
+  c.extraImpulse[i] = std::clamp(old - omega * c.extraMass[i] * (cdot + b), c.extraLo[i], c.extraHi[i]);
+  const float applied = c.extraImpulse[i] - old;
+  applyRow(c, c.extra[i], applied, s);
+  storeBack(bodies, c, s);
+  return c.extraMass[i] > 0.0f ? std::fabs(applied) / c.extraMass[i] : 0.0f;
+}
+
+float solveBlock(BodyStore& bodies, JointConstraint& c, float omega, bool useBias) {
+  Velocities s = load(bodies, c);
+  const int m = c.blockRows;
+  float rhs[kJointBlockRows];
+  float residual = 0.0f;
+  for (int i = 0; i < m; ++i) {
+    rhs[i] = -(rowVelocity(c.block[i], s) + (useBias ? c.softBiasRate * c.blockError[i] : 0.0f));
+    residual = std::max(residual, std::fabs(rhs[i]));
+  }
+  for (int i = 0; i < m; ++i) {
+    float dl = 0.0f;
+    for (int j = 0; j < m; ++j) dl += c.blockInvK[i * m + j] * rhs[j];
+    dl = useBias ? omega * (c.massScale * dl - c.impulseScale * c.blockImpulse[i]) : omega * dl;
+    c.blockImpulse[i] += dl;
+    applyRow(c, c.block[i], dl, s);
+  }
+  storeBack(bodies, c, s);
+  return residual;
+}
+
+}  // namespace
+
+float solveJointIteration(BodyStore& bodies, JointConstraint* js, size_t n, JointTree* tree, float omega,
+                          bool useBias) {
+  float residual = 0.0f;
+  // Motors first, then the equality blocks (the tree at once, the others joint by joint), limits last
+  // so that they have the final word in each sweep.
+  for (size_t k = 0; k < n; ++k)
+    if (js[k].motor) residual = std::max(residual, solveExtraRow(bodies, js[k], 0, omega, useBias));
+  if (tree && tree->size() > 0) residual = std::max(residual, tree->solve(bodies, js, useBias));
+  for (size_t k = 0; k < n; ++k) {
+    JointConstraint& c = js[k];
+    if (c.blockRows > 0 && !c.inTree) residual = std::max(residual, solveBlock(bodies, c, omega, useBias));
+    for (int i = c.motor ? 1 : 0; i < c.extraRows; ++i)
+      residual = std::max(residual, solveExtraRow(bodies, c, i, omega, useBias));
+  }
+  return residual;
+}
+
+void storeJointImpulses(const JointConstraint* js, size_t n, float dt, Joint* joints) {
+  const float invDt = 1.0f / dt;
+  for (size_t k = 0; k < n; ++k) {
+    const JointConstraint& c = js[k];
+    Joint& j = joints[c.joint];
+    Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+    for (int i = 0; i < kJointBlockRows; ++i) j.blockImpulse[i] = i < c.blockRows ? c.blockImpulse[i] : 0.0f;
+    for (int i = 0; i < kJointExtraRows; ++i) j.extraImpulse[i] = 0.0f;
+    auto accumulate = [&](const JointRow& r, float lambda) {
+      if (r.lin.squaredNorm() > 0.0f) force += lambda * r.lin;
+      else torque += lambda * r.angB;
+    };
+    for (int i = 0; i < c.blockRows; ++i) accumulate(c.block[i], c.blockImpulse[i]);
+    for (int i = 0; i < c.extraRows; ++i) {
+      j.extraImpulse[c.extraSlot[i]] = c.extraImpulse[i];
+      accumulate(c.extra[i], c.extraImpulse[i]);
+    }
+    j.lastForce = invDt * force;
+    j.lastTorque = invDt * torque;
+  }
+}
+
+JointError measureJointError(const BodyStore& bodies, const Joint& j) {
+  const JointDef& d = j.def;
+  const JointGeometry g = geometryOf(bodies, d);
+  const Vec3 sep = g.pB - g.pA;
+  JointError err;
+  auto outside = [](float x, float lo, float hi) { return std::max(0.0f, std::max(lo - x, x - hi)); };
+  switch (d.type) {
+    case JointType::Ball: err.linear = sep.norm(); break;
+    case JointType::Hinge: {
+      err.linear = sep.norm();
+      err.angular = std::acos(std::clamp(g.axisA.dot(g.axisB), -1.0f, 1.0f));
+      if (d.limitEnabled) err.angular += outside(hingeAngle(g), d.lower, d.upper);
+      break;
+    }
+    case JointType::Fixed:
+      err.linear = sep.norm();
+      err.angular = rotationError(g).norm();
+      break;
+    case JointType::Slider: {
+      const float s = g.axisA.dot(sep);
+      err.linear = (sep - s * g.axisA).norm();
+      if (d.limitEnabled) err.linear += outside(s, d.lower, d.upper);
+      err.angular = rotationError(g).norm();
+      break;
+    }
+    case JointType::Distance: err.linear = outside(sep.norm(), d.minDistance, d.maxDistance); break;
+    case JointType::ConeTwist:
+      err.linear = sep.norm();
+      err.angular = std::max(0.0f, swingAngle(g) - d.swingLimit) + outside(twistAngle(g), d.twistLower, d.twistUpper);
+      break;
+    default: break;
+  }
+  return err;
+}
+
+}  // namespace haif

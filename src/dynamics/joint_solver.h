@@ -1,0 +1,102 @@
+// Joint rows for the SOR-PGS solver. Each joint is an equality block (anchor coincidence and locked
+// rotation axes, up to 6 rows) solved as one small linear system per sweep, so the rows of a joint do not
+// fight each other, plus up to 3 limit/motor rows with bounds solved one by one like contact rows.
+// Rows act on the same BodyStore velocities as contacts:
+//   Cdot = lin·(vB - vA) + angB·wB - angA·wA,   impulse λ: vA -= mA lin λ, wA -= IA angA λ, vB += ..., wB += ...
+#pragma once
+
+#include "core/body_store.h"
+#include "dynamics/contact_solver.h"
+#include "dynamics/joint.h"
+
+#include <cstddef>
+#include <cstdint>
+
+namespace haif {
+
+/// How joints are solved; the World holds one (WorldSettings::joints).
+struct JointSolverParams {
+  bool treeSolve = true;           ///< joints that form a tree: exact block per sweep (JointTree)
+  bool geometricStiffness = true;  ///< see accumulateJointStiffness
+  bool postProjection = true;      ///< after integration, project tree joints back onto their constraints
+  float beta = 0.5f;               ///< Baumgarte factor of the tree and of limits
+  /// Joints outside a tree (closing a loop) are soft constraints with this frequency and damping ratio:
+  /// rigid Baumgarte rows, solved partially and warm started, wind up and blow a loop apart.
+  float softHertz = 30.0f;
+  float softDampingRatio = 1.0f;
+};
+
+/// One Jacobian row with I^-1 times its angular parts.
+struct JointRow {
+  Vec3 lin, angA, angB;
+  Vec3 iAngA, iAngB;
+};
+
+/// Solver data of one joint, prepared once per step from the current body state.
+struct JointConstraint {
+  uint32_t a, b;        // body ids (kWorldBody allowed)
+  uint32_t joint;       // index of the Joint it came from
+  float invMassA, invMassB;
+  bool dynA, dynB;      // only dynamic, awake bodies receive velocity changes
+  int blockRows;        // equality rows in use
+  int extraRows;        // limit/motor rows in use
+  bool motor;           // extra row 0 is a motor (solved before the block; limits come after it)
+  bool inTree;          // the block is solved by the island's JointTree, not on its own
+  JointRow block[kJointBlockRows];
+  float blockInvK[kJointBlockRows * kJointBlockRows];  // (J M^-1 J^T)^-1, row-major, blockRows^2 used
+  float blockError[kJointBlockRows];                   // position error C of each row
+  float treeBiasRate;                                  // 1/s: bias = rate * C in the tree (Baumgarte)
+  float softBiasRate;                                  // 1/s: bias = rate * C of a soft block (outside a tree)
+  float blockImpulse[kJointBlockRows];
+  float massScale, impulseScale;  // soft block coefficients of the main sweeps
+  JointRow extra[kJointExtraRows];
+  float extraMass[kJointExtraRows];   // 1 / (J M^-1 J^T)
+  float extraBias[kJointExtraRows];   // main sweeps
+  float extraRelaxBias[kJointExtraRows];  // relax sweeps: no position correction
+  float extraLo[kJointExtraRows], extraHi[kJointExtraRows];  // impulse bounds (N s)
+  float extraImpulse[kJointExtraRows];
+  int8_t extraSlot[kJointExtraRows];  // which Joint::extraImpulse entry a row warm-starts from
+};
+
+/// Geometric stiffness of the joints at their bodies: for each body, the sum over its joints of the last
+/// step's force times the lever arm (N m). A light link pulled hard along a chain has a rotation mode far
+/// faster than the step (a 100 kg load on 1 kg links: ~200 rad/s at 60 Hz) that the linearised joint rows
+/// meet only a step late, so it spins up and tears the chain. Adds to `stiffness` (per body).
+void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* stiffness);
+
+/// Adds h^2 times a body's geometric stiffness to its world inertia for this step's solve (Andrews et
+/// al. 2017, diagonal geometric stiffness): the fast mode is then treated implicitly, damped instead of
+/// spun up, and slow motion is left alone. Every row touching the body (joints and contacts) must see
+/// the same inertia, or the sweep stops being a projection and pumps energy (crates bounced off a rope
+/// bridge); integration restores the true inertia.
+void stiffenInertia(BodyStore& bodies, uint32_t body, float stiffness, float dt);
+
+/// Builds the rows of joint `j` (index ji) into `jc`; `time` is the simulated time at the end of the
+/// step (servo motors aim at their trajectory there).
+void prepareJoint(const BodyStore& bodies, const Joint& j, uint32_t ji, const SolverParams& p,
+                  const JointSolverParams& jp, float time, JointConstraint& jc);
+
+/// Pseudo-inverse of a symmetric positive semi-definite m x m matrix (row-major) by LDL^T: a row that
+/// depends on earlier ones (pivot <= tolerance) is left out instead of blowing up. The rows come from
+/// float data, so redundancy shows as pivots of ~1e-7 of the diagonal, not zero.
+void invertSymmetric(const double* K, int m, double tolerance, double* inverse);
+
+/// Applies the accumulated (warm-start) impulses to the body velocities.
+void warmStartJoints(BodyStore& bodies, const JointConstraint* js, size_t n);
+
+/// One sweep over the joints; returns the largest velocity correction (m/s or rad/s). `useBias`
+/// false: the relax sweep after integration (no position correction, motors still drive).
+/// `tree` (may be null) solves the blocks of the joints marked inTree exactly, as one block of the sweep.
+float solveJointIteration(BodyStore& bodies, JointConstraint* js, size_t n, class JointTree* tree, float omega,
+                          bool useBias);
+
+/// Writes accumulated impulses back to the joints and records their force and torque (impulse / dt).
+void storeJointImpulses(const JointConstraint* js, size_t n, float dt, Joint* joints);
+
+/// Position-level error of a joint at the bodies' current transforms (DESIGN.md §5 joint error).
+JointError measureJointError(const BodyStore& bodies, const Joint& j);
+
+/// Current relative position of a hinge (angle about the axis, rad) or slider (translation, m).
+float jointPosition(const BodyStore& bodies, const JointDef& d);
+
+}  // namespace haif

@@ -1,0 +1,91 @@
+// Exact solve of an island's joint equality rows when its joints form a tree (chains, ragdolls, rope
+// bridges, arms). Plain PGS needs about as many sweeps as a chain has links to carry a heavy load from
+// one end to the other, and at a 1:100 mass ratio it stretches by metres at 10 sweeps. Over a tree the
+// system J M^-1 J^T λ = -(J v + b) factors without fill-in: eliminating the joints body by body from the
+// leaves inwards only ever couples joints that already share a body (the joints at one body form a
+// clique). So each SOR-PGS sweep treats the whole tree as one block, solved in linear time; limits,
+// motors, joints that close a loop and contacts stay ordinary PGS rows around it.
+#pragma once
+
+#include "core/body_store.h"
+#include "dynamics/joint_solver.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace haif {
+
+class JointTree {
+ public:
+  /// Picks the joints of `js` whose equality blocks form a forest over the dynamic bodies (a joint that
+  /// would close a loop is left to the per-joint sweep: its `inTree` stays false), orders them and factors
+  /// the system at the prepared rows. Buffers are kept between calls: no allocation once warm.
+  void build(JointConstraint* js, uint32_t n);
+  /// One exact solve of the tree rows against the current velocities: λ += A^-1 (-(J v + b)), applied
+  /// to the bodies. `useBias` false: the relax sweep (no position correction). Returns max |J v + b|.
+  float solve(BodyStore& bodies, JointConstraint* js, bool useBias);
+  /// Post-stabilisation: moves the bodies (positions and orientations, not velocities) by one linearised
+  /// exact step onto the tree's constraints, J M^-1 J^T Δ = -C at the rows as prepared. Integration
+  /// leaves a drift of about r ω² h² / 2 per step at a spinning link that Baumgarte only removes a
+  /// fraction of per step; this takes it out to second order.
+  void project(BodyStore& bodies, const JointConstraint* js);
+  uint32_t size() const { return static_cast<uint32_t>(order_.size()); }
+
+ private:
+  struct Block {
+    double a[kJointBlockRows * kJointBlockRows];  // row-major, m_u x m_j used
+  };
+  struct Incidence {
+    uint32_t body;   // global body id
+    uint32_t joint;  // index into js
+    int8_t side;     // -1: the joint's body A, +1: body B
+  };
+  struct BodyNode {
+    uint32_t id;                  // global body id
+    uint32_t firstInc, incCount;  // range in inc_ (sorted by body)
+    int32_t parentJoint = -1;     // tree joint to the parent body (index into js), -1 at a root
+    uint32_t cliqueStart = 0, cliqueSize = 0;  // range in clique_
+    uint32_t blockStart = 0;      // lower-triangular off-diagonal blocks of the clique in blocks_
+    uint8_t visited = 0;
+  };
+  struct JointNode {
+    uint32_t c;       // index into js
+    int m;            // equality rows
+    uint32_t owner;   // BodyNode whose clique eliminates it
+    uint32_t pos;     // position in that clique
+  };
+
+  uint32_t find(uint32_t x);
+  double* block(const BodyNode& b, uint32_t row, uint32_t col) {
+    return blocks_[b.blockStart + row * (row - 1) / 2 + col].a;
+  }
+  int rowsAt(const BodyNode& b, uint32_t pos) const { return order_[nodeOfJoint_[clique_[b.cliqueStart + pos]]].m; }
+  void assemble(const JointConstraint* js);
+  void factor();
+  void solveInPlace();  // rhs_ <- A^-1 rhs_ with the factors
+
+  std::vector<Incidence> inc_;
+  std::vector<BodyNode> bodies_;
+  std::vector<uint32_t> uf_;
+  std::vector<uint8_t> treeEdge_;      // per joint in js
+  std::vector<int32_t> bodyOfSide_[2]; // per joint: BodyNode of its A / B end, -1 if not dynamic
+  std::vector<uint32_t> stack_;
+  std::vector<uint32_t> postOrder_;
+  std::vector<JointNode> order_;       // elimination order
+  std::vector<uint32_t> nodeOfJoint_;  // js index -> order_ index
+  std::vector<uint32_t> clique_;       // per BodyNode: order_ indices of its joints, parent joint last
+  std::vector<Block> diag_;            // per order_ entry: D_j, then its pseudo-inverse
+  std::vector<double> scale_;          // per order_ entry: largest diagonal entry before elimination
+  std::vector<Block> blocks_;
+  std::vector<Block> tmp_;             // L blocks of the joint being eliminated
+  std::vector<double> rhs_;            // 6 per node
+};
+
+/// Post-stabilisation of one island's joints after integration: prepares the rows of joints `ids` at the
+/// bodies' new positions into `scratch` (n entries), factors the tree and projects (JointTree::project).
+/// Joints outside the tree are left to the next step's soft rows.
+void projectJointPositions(BodyStore& bodies, const Joint* joints, const uint32_t* ids, uint32_t n,
+                           const SolverParams& p, const JointSolverParams& jp, JointConstraint* scratch,
+                           JointTree& tree);
+
+}  // namespace haif

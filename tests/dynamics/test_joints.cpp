@@ -1,0 +1,322 @@
+// Joints (issue 7): drift bounds per joint type at 10 iterations, limits, motors, servos, breaking,
+// collision filtering, islands and determinism.
+#include "dynamics_test_util.h"
+#include "joint_test_util.h"
+
+#include <cmath>
+
+namespace haif::test {
+namespace {
+
+constexpr int kSteps = 300;  // 5 s at 60 Hz
+
+uint32_t addRod(World& w, const Vec3& p, float mass = 1.0f, const Quat& q = Quat::Identity()) {
+  return addBox(w, p, Vec3(0.1f, 0.5f, 0.1f), mass, q);
+}
+
+/// Worst joint errors over a run.
+struct Worst {
+  float linear = 0.0f, angular = 0.0f;
+  void add(const JointError& e) {
+    linear = std::max(linear, e.linear);
+    angular = std::max(angular, e.angular);
+  }
+};
+
+Worst runAndMeasure(World& w, int steps, uint32_t joint) {
+  Worst worst;
+  for (int i = 0; i < steps; ++i) {
+    w.step();
+    worst.add(w.jointError(joint));
+    EXPECT_TRUE(isFinite(w.bodies().xf.back().p));
+  }
+  return worst;
+}
+
+// A double pendulum: a rod pinned to the world, and a second rod joined to its lower end by the joint
+// under test, both released from horizontal and spinning a little off the swing plane.
+struct DoublePendulum {
+  World w;
+  uint32_t upper = 0, lower = 0, joint = 0;
+  DoublePendulum(JointType type, float lowerMass = 2.0f) {
+    const Quat flat(Eigen::AngleAxisf(kPi / 2, Vec3::UnitZ()));  // rods along x
+    upper = addRod(w, Vec3(0.5f, 5.0f, 0.0f), 1.0f, flat);
+    lower = addRod(w, Vec3(1.5f, 5.0f, 0.0f), lowerMass, flat);
+    addJointAt(w, JointType::Ball, kWorldBody, upper, Vec3(0.0f, 5.0f, 0.0f));
+    joint = addJointAt(w, type, upper, lower, Vec3(1.0f, 5.0f, 0.0f), Vec3::UnitZ());
+    w.bodies().w[lower] = Vec3(2.0f, 0.0f, 0.0f);
+  }
+};
+
+TEST(JointDrift, BallKeepsItsAnchorsTogether) {
+  DoublePendulum p(JointType::Ball);
+  const Worst e = runAndMeasure(p.w, kSteps, p.joint);
+  EXPECT_LT(e.linear, 0.01f);
+  EXPECT_GT(p.w.bodies().v[p.lower].norm(), 1.0f) << "the pendulum should swing";
+}
+
+TEST(JointDrift, HingeKeepsAnchorsAndAxes) {
+  DoublePendulum p(JointType::Hinge);
+  const Worst e = runAndMeasure(p.w, kSteps, p.joint);
+  EXPECT_LT(e.linear, 0.01f);
+  EXPECT_LT(e.angular, 0.02f);
+  // The off-axis spin was taken out: relative to the upper rod the lower one turns about the hinge axis only.
+  const JointDef& d = p.w.joint(p.joint).def;
+  const Vec3 axis = p.w.bodies().xf[p.upper].q * (d.localFrameA * Vec3::UnitX());
+  const Vec3 rel = p.w.bodies().w[p.lower] - p.w.bodies().w[p.upper];
+  EXPECT_LT((rel - rel.dot(axis) * axis).norm(), 0.02f * std::max(1.0f, std::fabs(rel.dot(axis))));
+}
+
+TEST(JointDrift, FixedWeldsTwoBodies) {
+  DoublePendulum p(JointType::Fixed);
+  const Worst e = runAndMeasure(p.w, kSteps, p.joint);
+  EXPECT_LT(e.linear, 0.01f);
+  EXPECT_LT(e.angular, 0.02f);
+}
+
+TEST(JointDrift, SliderKeepsTheAxisAndOrientation) {
+  // The lower rod may slide along z (across the swing) within limits, nothing else.
+  DoublePendulum p(JointType::Slider);
+  JointDef& d = p.w.jointDef(p.joint);
+  d.limitEnabled = true;
+  d.lower = -0.3f;
+  d.upper = 0.3f;
+  p.w.bodies().v[p.lower] = Vec3(0.0f, 0.0f, 2.0f);
+  const Worst e = runAndMeasure(p.w, kSteps, p.joint);
+  EXPECT_LT(e.linear, 0.01f);
+  EXPECT_LT(e.angular, 0.02f);
+}
+
+TEST(JointDrift, DistanceRodKeepsItsLength) {
+  World w;
+  const uint32_t rod = addRod(w, Vec3(0.5f, 5.0f, 0.0f), 1.0f, Quat(Eigen::AngleAxisf(kPi / 2, Vec3::UnitZ())));
+  const uint32_t ball = addSphere(w, Vec3(2.5f, 5.0f, 0.0f), 0.2f, 3.0f);
+  addJointAt(w, JointType::Ball, kWorldBody, rod, Vec3(0.0f, 5.0f, 0.0f));
+  const uint32_t j = addJointAt(w, JointType::Distance, rod, ball, Vec3(1.0f, 5.0f, 0.0f), Vec3::UnitX(),
+                                Vec3(2.5f, 5.0f, 0.0f));
+  EXPECT_FLOAT_EQ(w.joint(j).def.minDistance, 1.5f);
+  const Worst e = runAndMeasure(w, kSteps, j);
+  EXPECT_LT(e.linear, 0.01f);
+}
+
+TEST(JointDrift, RopeGoesSlackButNeverStretches) {
+  World w;
+  const uint32_t ball = addSphere(w, Vec3(0.5f, 5.0f, 0.0f), 0.2f, 3.0f);
+  JointDef d = jointAtWorld(JointType::Distance, kWorldBody, ball, Transform{}, w.bodies().xf[ball],
+                            Vec3(0.0f, 5.0f, 0.0f), Vec3::UnitX(), Vec3(0.5f, 5.0f, 0.0f));
+  d.minDistance = 0.0f;
+  d.maxDistance = 1.5f;
+  const uint32_t j = w.addJoint(d);
+  float longest = 0.0f, shortest = 1e9f;
+  for (int i = 0; i < kSteps; ++i) {
+    w.step();
+    const float len = (w.bodies().xf[ball].p - Vec3(0.0f, 5.0f, 0.0f)).norm();
+    longest = std::max(longest, len);
+    shortest = std::min(shortest, len);
+  }
+  EXPECT_LT(longest, 1.5f + 0.01f) << "the rope stretched";
+  EXPECT_GT(longest, 1.5f - 0.01f) << "the rope never went taut";
+  EXPECT_LT(shortest, 1.0f) << "a rope may go slack";
+  EXPECT_LT(w.jointError(j).linear, 0.01f);
+}
+
+TEST(JointDrift, ConeTwistStaysInsideItsCone) {
+  World w;
+  const uint32_t arm = addRod(w, Vec3(0.0f, 4.5f, 0.0f));  // hangs along -y from the pivot at y = 5
+  JointDef d = jointAtWorld(JointType::ConeTwist, kWorldBody, arm, Transform{}, w.bodies().xf[arm],
+                            Vec3(0.0f, 5.0f, 0.0f), -Vec3::UnitY(), Vec3::Zero());
+  d.swingLimit = 0.5f;
+  d.twistLower = -0.3f;
+  d.twistUpper = 0.3f;
+  const uint32_t j = w.addJoint(d);
+  w.bodies().w[arm] = Vec3(6.0f, 4.0f, 5.0f);  // kick it into both limits
+  Worst e;
+  float maxSwing = 0.0f;
+  for (int i = 0; i < kSteps; ++i) {
+    w.step();
+    e.add(w.jointError(j));
+    const Vec3 axis = w.bodies().xf[arm].rotate(-Vec3::UnitY());
+    maxSwing = std::max(maxSwing, std::acos(std::clamp(axis.dot(-Vec3::UnitY()), -1.0f, 1.0f)));
+  }
+  EXPECT_LT(e.linear, 0.01f);
+  EXPECT_LT(e.angular, 0.03f) << "swing or twist went past its limit";
+  EXPECT_GT(maxSwing, 0.4f) << "the kick should reach the cone";
+  EXPECT_LT(maxSwing, 0.5f + 0.03f);
+}
+
+TEST(JointLimits, HingeLimitHoldsAgainstGravity) {
+  // A plank hinged at one end about z; gravity swings it down, the limit stops it at -0.5 rad.
+  World w;
+  const uint32_t plank = addBox(w, Vec3(1.0f, 5.0f, 0.0f), Vec3(1.0f, 0.05f, 0.2f), 5.0f);
+  JointDef d = jointAtWorld(JointType::Hinge, kWorldBody, plank, Transform{}, w.bodies().xf[plank],
+                            Vec3(0.0f, 5.0f, 0.0f), Vec3::UnitZ(), Vec3::Zero());
+  d.limitEnabled = true;
+  d.lower = -0.5f;
+  d.upper = 0.5f;
+  const uint32_t j = w.addJoint(d);
+  float lowest = 0.0f, highest = 0.0f;
+  for (int i = 0; i < kSteps; ++i) {
+    w.step();
+    const float a = jointPosition(w.bodies(), w.joint(j).def);
+    lowest = std::min(lowest, a);
+    highest = std::max(highest, a);
+  }
+  EXPECT_GT(lowest, -0.5f - 0.02f) << "fell through the lower limit";
+  EXPECT_LT(lowest, -0.5f + 0.02f) << "never reached the limit";
+  EXPECT_LT(highest, 0.5f + 0.02f);
+  EXPECT_LT(w.bodies().w[plank].norm(), 0.05f) << "should rest on the limit";
+}
+
+// A box turning about a hinge through its centre (gravity exerts no torque).
+struct Wheel {
+  World w;
+  uint32_t body = 0, joint = 0;
+  explicit Wheel(float speed, float maxTorque) {
+    body = addBox(w, Vec3(0.0f, 5.0f, 0.0f), Vec3(0.5f, 0.5f, 0.1f), 4.0f);
+    JointDef d = jointAtWorld(JointType::Hinge, kWorldBody, body, Transform{}, w.bodies().xf[body],
+                              Vec3(0.0f, 5.0f, 0.0f), Vec3::UnitZ(), Vec3::Zero());
+    d.motorEnabled = true;
+    d.motorSpeed = speed;
+    d.maxMotorForce = maxTorque;
+    joint = w.addJoint(d);
+  }
+};
+
+TEST(JointMotor, ReachesItsTargetSpeed) {
+  Wheel wheel(3.0f, 50.0f);
+  for (int i = 0; i < 60; ++i) wheel.w.step();
+  EXPECT_NEAR(wheel.w.bodies().w[wheel.body].z(), 3.0f, 0.03f);
+  EXPECT_LT(wheel.w.jointError(wheel.joint).linear, 0.005f);
+}
+
+TEST(JointMotor, TorqueIsBoundedByMaxForce) {
+  // I_z of the box is m (a^2 + b^2) / 3 = 4 (0.25 + 0.25) / 3; 0.5 N m gives a known acceleration.
+  const float inertia = 4.0f * 0.5f / 3.0f, torque = 0.5f;
+  Wheel wheel(100.0f, torque);
+  for (int i = 0; i < 30; ++i) wheel.w.step();
+  EXPECT_NEAR(wheel.w.bodies().w[wheel.body].z(), torque / inertia * 0.5f, 0.02f);
+}
+
+TEST(JointMotor, ServoFollowsATrajectory) {
+  // An arm on a hinge, under gravity, driven through 0 -> 1 rad -> -0.5 rad.
+  World w;
+  const uint32_t arm = addBox(w, Vec3(0.5f, 5.0f, 0.0f), Vec3(0.5f, 0.05f, 0.05f), 1.0f);
+  JointDef d = jointAtWorld(JointType::Hinge, kWorldBody, arm, Transform{}, w.bodies().xf[arm],
+                            Vec3(0.0f, 5.0f, 0.0f), Vec3::UnitZ(), Vec3::Zero());
+  d.motorEnabled = true;
+  d.maxMotorForce = 100.0f;
+  d.servo = {{0.0f, 0.0f}, {1.0f, 1.0f}, {2.0f, -0.5f}};
+  const uint32_t j = w.addJoint(d);
+  float worst = 0.0f;
+  for (int i = 0; i < 150; ++i) {
+    w.step();
+    const float t = float(i + 1) / 60.0f;
+    const float target = t <= 1.0f ? t : (t <= 2.0f ? 1.0f - 1.5f * (t - 1.0f) : -0.5f);
+    if (t > 0.25f) worst = std::max(worst, std::fabs(jointPosition(w.bodies(), w.joint(j).def) - target));
+  }
+  EXPECT_LT(worst, 0.05f);
+}
+
+TEST(JointBreaking, BreaksAboveTheThresholdOnly) {
+  for (const float threshold : {150.0f, 50.0f}) {  // the joint carries 10 kg: 98.1 N
+    World w;
+    const uint32_t ball = addSphere(w, Vec3(0.0f, 4.0f, 0.0f), 0.3f, 10.0f);
+    JointDef d = jointAtWorld(JointType::Ball, kWorldBody, ball, Transform{}, w.bodies().xf[ball],
+                              Vec3(0.0f, 5.0f, 0.0f), Vec3::UnitX(), Vec3::Zero());
+    d.breakForce = threshold;
+    const uint32_t j = w.addJoint(d);
+    for (int i = 0; i < 60; ++i) w.step();
+    if (threshold > 98.1f) {
+      EXPECT_FALSE(w.joint(j).broken);
+      EXPECT_NEAR(w.joint(j).lastForce.norm(), 98.1f, 1.0f);
+      EXPECT_NEAR(w.bodies().xf[ball].p.y(), 4.0f, 0.01f);
+    } else {
+      EXPECT_TRUE(w.joint(j).broken);
+      EXPECT_LT(w.bodies().xf[ball].p.y(), 3.0f) << "a broken joint must let go";
+    }
+  }
+}
+
+TEST(JointCollision, JoinedBodiesDoNotCollideUntilTheJointBreaks) {
+  // Two overlapping boxes, welded; no gravity. Once the weld breaks they collide and separate.
+  WorldSettings s;
+  s.gravity = Vec3::Zero();
+  World w(s);
+  const uint32_t a = addBox(w, Vec3(0.0f, 5.0f, 0.0f));
+  const uint32_t b = addBox(w, Vec3(0.6f, 5.0f, 0.0f));
+  const uint32_t j = addJointAt(w, JointType::Fixed, a, b, Vec3(0.3f, 5.0f, 0.0f));
+  for (int i = 0; i < 10; ++i) w.step();
+  EXPECT_EQ(w.lastStats().contacts, 0u);
+  EXPECT_NEAR(w.bodies().xf[b].p.x() - w.bodies().xf[a].p.x(), 0.6f, 1e-3f);
+  w.jointDef(j).breakForce = -1.0f;  // breaks at the next step
+  // Push-out runs at most WorldSettings::maxPushVelocity: 0.4 m of overlap takes about 2 s.
+  for (int i = 0; i < 180; ++i) w.step();
+  EXPECT_TRUE(w.joint(j).broken);
+  EXPECT_GT(w.bodies().xf[b].p.x() - w.bodies().xf[a].p.x(), 0.95f) << "the overlap should have been pushed out";
+}
+
+TEST(JointIslands, JointsJoinBodiesButTheWorldDoesNot) {
+  World w;
+  addGround(w);
+  const uint32_t a = addSphere(w, Vec3(0.0f, 5.0f, 0.0f));
+  const uint32_t b = addSphere(w, Vec3(3.0f, 5.0f, 0.0f));
+  const uint32_t c = addSphere(w, Vec3(6.0f, 5.0f, 0.0f));
+  addJointAt(w, JointType::Ball, kWorldBody, a, Vec3(0.0f, 6.0f, 0.0f));
+  addJointAt(w, JointType::Ball, kWorldBody, b, Vec3(3.0f, 6.0f, 0.0f));
+  addJointAt(w, JointType::Distance, b, c, Vec3(3.0f, 5.0f, 0.0f), Vec3::UnitX(), Vec3(6.0f, 5.0f, 0.0f));
+  w.step();
+  EXPECT_NE(w.islandOf(a), w.islandOf(b)) << "two bodies pinned to the world are not connected";
+  EXPECT_EQ(w.islandOf(b), w.islandOf(c));
+  EXPECT_EQ(w.islands().islands.size(), 2u);
+  EXPECT_TRUE(w.lastStats().stages & kStageJoints);
+  uint32_t joints = 0, rows = 0;
+  for (const Island& isl : w.islands().islands) {
+    joints += isl.jointCount;
+    rows += isl.rows;
+  }
+  EXPECT_EQ(joints, 3u);
+  EXPECT_EQ(rows, 3u + 3u + 1u) << "two ball joints and a rod";
+}
+
+TEST(JointIslands, NoJointStageWithoutJoints) {
+  World w;
+  addGround(w);
+  addSphere(w, Vec3(0.0f, 1.0f, 0.0f));
+  w.step();
+  EXPECT_FALSE(w.lastStats().stages & kStageJoints);
+}
+
+// Ragdoll-like trees and loops, many islands: fixed mode must not depend on the thread count.
+uint64_t runJointedPile(int threads) {
+  WorldSettings s;
+  s.threads = threads;
+  World w(s);
+  addGround(w);
+  for (int k = 0; k < 12; ++k) {
+    const Vec3 base(3.0f * float(k % 4), 3.0f + 0.5f * float(k / 4), 3.0f * float(k / 4));
+    const uint32_t torso = addBox(w, base, Vec3(0.3f, 0.4f, 0.15f), 10.0f);
+    uint32_t prev = torso;
+    for (int i = 0; i < 3; ++i) {  // a tail of three links
+      const uint32_t link = addBox(w, base + Vec3(0.0f, -0.6f - 0.5f * float(i), 0.0f), Vec3(0.1f, 0.2f, 0.1f), 1.0f);
+      addJointAt(w, i == 0 ? JointType::ConeTwist : JointType::Hinge, prev, link,
+                 base + Vec3(0.0f, -0.4f - 0.5f * float(i), 0.0f), Vec3::UnitZ());
+      prev = link;
+    }
+    const uint32_t arm = addBox(w, base + Vec3(0.6f, 0.0f, 0.0f), Vec3(0.25f, 0.08f, 0.08f), 2.0f);
+    addJointAt(w, JointType::Ball, torso, arm, base + Vec3(0.3f, 0.2f, 0.0f));
+    addJointAt(w, JointType::Distance, torso, arm, base + Vec3(0.3f, -0.2f, 0.0f), Vec3::UnitX(),
+               base + Vec3(0.85f, 0.0f, 0.0f));  // closes a loop with the ball joint
+  }
+  for (int i = 0; i < 180; ++i) w.step();
+  EXPECT_LT(worstJointError(w).linear, 0.05f);
+  return w.stateHash();
+}
+
+TEST(JointDeterminism, ThreadCountDoesNotChangeTheResult) {
+  const uint64_t one = runJointedPile(1);
+  EXPECT_EQ(runJointedPile(4), one);
+  EXPECT_EQ(runJointedPile(1), one);
+}
+
+}  // namespace
+}  // namespace haif::test
