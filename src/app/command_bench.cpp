@@ -95,11 +95,17 @@ int commandBench(int argc, char** argv) {
   }
   const bool isQuick = cl.has("--quick");
   // --quick: fewer scenes, steps and sweep points, to finish in a few minutes on a small machine.
-  int steps = isQuick ? 120 : 300, threads = int(tbb::info::default_concurrency()), errorEvery = isQuick ? 30 : 10;
+  int steps = isQuick ? 120 : 300, threads = int(tbb::info::default_concurrency()), errorEvery = 0;
   double seedBudget = 4.0;
   std::vector<double> iterations, budgets;
-  if (!cl.getInt("--steps", 1, 1000000, steps, error) || !cl.getInt("--threads", 1, 1024, threads, error) ||
-      !cl.getInt("--error-every", 0, 100000, errorEvery, error) ||
+  if (!cl.getInt("--steps", 1, 1000000, steps, error) || !cl.getInt("--threads", 1, 1024, threads, error)) {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return 2;
+  }
+  // Ten solve-error samples per run by default (four with --quick): each costs a converged solve,
+  // which on the big scenes takes longer than the steps themselves.
+  errorEvery = std::max(1, steps / (isQuick ? 4 : 10));
+  if (!cl.getInt("--error-every", 0, 100000, errorEvery, error) ||
       !cl.getDouble("--budget-ms", 0.01, 1e6, seedBudget, error) ||
       !parseNumbers("--iterations", cl.get("--iterations", isQuick ? "1,4,16,64" : "1,2,4,8,16,32,64"), 1, 10000,
                     true, iterations, error) ||
