@@ -211,8 +211,9 @@ uint32_t jointRowCount(const JointDef& d) {
     case JointType::Hinge: return 5 + motor + limits;
     case JointType::Fixed: return 6;
     case JointType::Slider: return 5 + motor + limits;
-    case JointType::Distance: return d.minDistance == d.maxDistance ? 1 : 2;
-    case JointType::ConeTwist: return 6;
+    case JointType::Distance: return d.minDistance == d.maxDistance || d.minDistance <= 0.0f ? 1 : 2;
+    case JointType::ConeTwist:
+      return 3 + (d.swingLimit < kPi ? 1u : 0u) + (d.twistLower > -kPi || d.twistUpper < kPi ? 2u : 0u);
     default: return 0;
   }
 }
