@@ -109,7 +109,8 @@ int commandRun(int argc, char** argv) {
     ro.height = height;
     renderer = render::Renderer::create(ro, &error);
     if (!renderer) return fail("haif run: renderer: " + error);
-    if (!builder.registerMeshes(world, sim.scene, *renderer, error)) return fail("haif run: " + scenePath + ": " + error);
+    if (!builder.registerMeshes(world, sim.scene, *renderer, error))
+      return fail("haif run: " + scenePath + ": " + error);
     const std::string view = cl.get("--view", "normal");
     if (!parseViewMode(view, frame.mode))
       return fail("haif run: --view: expected normal, island, sleep or heat, got '" + view + "'", 2);

@@ -211,8 +211,9 @@ uint32_t jointRowCount(const JointDef& d) {
     case JointType::Hinge: return 5 + motor + limits;
     case JointType::Fixed: return 6;
     case JointType::Slider: return 5 + motor + limits;
-    case JointType::Distance: return d.minDistance == d.maxDistance ? 1 : 2;
-    case JointType::ConeTwist: return 6;
+    case JointType::Distance: return d.minDistance == d.maxDistance || d.minDistance <= 0.0f ? 1 : 2;
+    case JointType::ConeTwist:
+      return 3 + (d.swingLimit < kPi ? 1u : 0u) + (d.twistLower > -kPi || d.twistUpper < kPi ? 2u : 0u);
     default: return 0;
   }
 }
@@ -317,7 +318,7 @@ void prepareJoint(const BodyStore& bodies, const Joint& j, uint32_t ji, const So
   jc.blockRows = m;
   jc.inTree = false;
   // Soft constraint coefficients (spring-damper solved implicitly): used when the joint is not in a tree.
-  const float omega = 2.0f * kPi * jp.softHertz, h = p.dt;
+  const float omega = 2.0f * kPi * std::min(jp.softHertz, 0.5f / p.dt), h = p.dt;
   const float a1 = 2.0f * jp.softDampingRatio + h * omega, a2 = h * omega * a1, a3 = 1.0f / (1.0f + a2);
   jc.treeBiasRate = beta;
   jc.softBiasRate = omega / a1;

@@ -1,7 +1,8 @@
 // Joint rows for the SOR-PGS solver. Each joint is an equality block (anchor coincidence and locked
-// rotation axes, up to 6 rows) solved as one small linear system per sweep, so the rows of a joint do not
-// fight each other, plus up to 3 limit/motor rows with bounds solved one by one like contact rows.
-// Rows act on the same BodyStore velocities as contacts:
+// rotation axes, up to 6 rows) plus up to 3 limit/motor rows with bounds, solved one by one like contact
+// rows. The blocks of joints that form a tree are solved together, exactly, by the island's JointTree
+// (Baumgarte bias, then a projection after integration); a joint that closes a loop is solved as its own
+// small system per sweep, as a soft constraint. Rows act on the same BodyStore velocities as contacts:
 //   Cdot = lin·(vB - vA) + angB·wB - angA·wA,   impulse λ: vA -= mA lin λ, wA -= IA angA λ, vB += ..., wB += ...
 #pragma once
 
@@ -20,8 +21,9 @@ struct JointSolverParams {
   bool geometricStiffness = true;  ///< see accumulateJointStiffness
   bool postProjection = true;      ///< after integration, project tree joints back onto their constraints
   float beta = 0.5f;               ///< Baumgarte factor of the tree and of limits
-  /// Joints outside a tree (closing a loop) are soft constraints with this frequency and damping ratio:
-  /// rigid Baumgarte rows, solved partially and warm started, wind up and blow a loop apart.
+  /// Joints outside a tree (closing a loop) are soft constraints with this frequency (at most half the
+  /// step rate) and damping ratio: rigid Baumgarte rows, solved partially and warm started, wind up and
+  /// blow a loop apart.
   float softHertz = 30.0f;
   float softDampingRatio = 1.0f;
 };

@@ -214,7 +214,8 @@ void World::finishJoints(uint32_t k) {
   const bool stiff = settings_.joints.geometricStiffness;
   const uint32_t* bodies = islands_.bodies.data() + isl.firstBody;
   if (stiff)
-    for (uint32_t j = 0; j < isl.bodyCount; ++j) stiffenInertia(bodies_, bodies[j], jointStiffness_[bodies[j]], settings_.dt);
+    for (uint32_t j = 0; j < isl.bodyCount; ++j)
+      stiffenInertia(bodies_, bodies[j], jointStiffness_[bodies[j]], settings_.dt);
   projectJointPositions(bodies_, joints_.data(), islands_.joints.data() + isl.firstJoint, nj, solverParams(),
                         settings_.joints, js, jointTrees_[k]);
   if (stiff)

@@ -9,7 +9,8 @@ namespace haif {
 
 std::vector<GeneratedAsset> generatedAssets() {
   return {
-      {"terrain.obj", "terrain, 40 m square: a hillside down towards +x and a valley floor (static triangle-mesh collider)",
+      {"terrain.obj",
+       "terrain, 40 m square: a hillside down towards +x and a valley floor (static triangle-mesh collider)",
        makeTerrain(40.0f, 40)},
       {"rock_a.ply", "rock, radius about 1 (convex-hull collider; also its own render mesh)",
        makeRock(1, Vec3(1.3f, 0.8f, 1.0f))},

@@ -15,10 +15,10 @@ bool importMeshAsset(const std::string& path, const Vec3& scale, std::vector<Vec
   // here: normals, texture coordinates and colours are dropped first, so that vertices which differ only
   // in those (every corner of an STL file carries its face normal) are joined into one.
   aiPropertyStore* props = aiCreatePropertyStore();
-  aiSetImportPropertyInteger(props, AI_CONFIG_PP_RVC_FLAGS,
-                             aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
-                                 aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS |
-                                 aiComponent_TEXTURES | aiComponent_LIGHTS | aiComponent_CAMERAS | aiComponent_MATERIALS);
+  const int dropped = aiComponent_NORMALS | aiComponent_TANGENTS_AND_BITANGENTS | aiComponent_COLORS |
+                      aiComponent_TEXCOORDS | aiComponent_BONEWEIGHTS | aiComponent_ANIMATIONS | aiComponent_TEXTURES |
+                      aiComponent_LIGHTS | aiComponent_CAMERAS | aiComponent_MATERIALS;
+  aiSetImportPropertyInteger(props, AI_CONFIG_PP_RVC_FLAGS, dropped);
   const aiScene* scene = aiImportFileExWithProperties(
       path.c_str(), aiProcess_RemoveComponent | aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                         aiProcess_PreTransformVertices | aiProcess_SortByPType,

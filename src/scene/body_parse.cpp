@@ -84,7 +84,8 @@ std::string resolveAssetPath(const std::string& sceneDir, const std::string& ass
 // Reads the "asset" (and "scale") of `owner` into vertices/indices; errors name the field and the resolved file.
 void readAsset(const JsonNode& owner, const ParseContext& ctx, std::string& asset, Vec3& scale,
                std::vector<Vec3>& vertices, std::vector<uint32_t>& indices) {
-  const JsonNode assetNode = requireMember(owner, "asset", "a mesh file (OBJ, glTF/GLB, STL, PLY) relative to the scene file");
+  const JsonNode assetNode =
+      requireMember(owner, "asset", "a mesh file (OBJ, glTF/GLB, STL, PLY) relative to the scene file");
   asset = readString(assetNode);
   if (asset.empty()) fail(assetNode, "must name a mesh file");
   const JsonNode scaleNode = owner.member("scale");
@@ -210,8 +211,8 @@ float parseMass(const JsonNode& node, MotionType motion) {
 }
 
 BodyDesc parseBody(const JsonNode& node, const ParseContext& ctx) {
-  checkKeys(node, {"name", "type", "shape", "position", "orientation", "velocity", "angular_velocity", "mass", "material",
-                   "damping", "render_mesh"});
+  checkKeys(node, {"name", "type", "shape", "position", "orientation", "velocity", "angular_velocity", "mass",
+                   "material", "damping", "render_mesh"});
   BodyDesc b;
   b.where = node.place;
   if (node.member("name").present()) b.name = readString(node.member("name"));

@@ -33,7 +33,8 @@ int32_t parseBodyRef(const JsonNode& node, const SceneDesc& scene, const BodyNam
     std::vector<std::string> known{"world"};
     for (const auto& kv : names.indices) known.push_back(kv.first);
     const std::string hint = didYouMean(name, known);
-    fail(node, "no body is named '" + name + "'" + (hint.empty() ? " (name bodies with \"name\", or use an index)" : hint));
+    fail(node, "no body is named '" + name + "'" +
+                   (hint.empty() ? " (name bodies with \"name\", or use an index)" : hint));
   }
   if (it->second.size() > 1)
     fail(node, "body name '" + name + "' is ambiguous: " + scene.bodies[size_t(it->second[0])].where + " and " +
@@ -44,7 +45,9 @@ int32_t parseBodyRef(const JsonNode& node, const SceneDesc& scene, const BodyNam
 std::string describeBody(const SceneDesc& scene, int32_t b) {
   if (b < 0) return "the world";
   const BodyDesc& d = scene.bodies[size_t(b)];
-  const char* motion = d.motion == MotionType::Static ? "static" : (d.motion == MotionType::Kinematic ? "kinematic" : "dynamic");
+  const char* motion = d.motion == MotionType::Static      ? "static"
+                       : d.motion == MotionType::Kinematic ? "kinematic"
+                                                           : "dynamic";
   return std::string(motion) + " " + (d.name.empty() ? d.where : "'" + d.name + "'");
 }
 
@@ -87,13 +90,15 @@ void parseServo(const JsonNode& node, bool hinge, JointDef& p) {
   checkKeys(node, hinge ? std::vector<std::string>{"keys", "keys_deg", "max_force", "loop", "response_time"}
                         : std::vector<std::string>{"keys", "max_force", "loop", "response_time"});
   p.motorEnabled = true;
-  const JsonNode keys = hinge ? oneOf(node, "keys", "keys_deg", true, "[[time, position], ...]") : requireMember(node, "keys", "[[time, position], ...]");
+  const char* hint = "[[time, position], ...]";
+  const JsonNode keys = hinge ? oneOf(node, "keys", "keys_deg", true, hint) : requireMember(node, "keys", hint);
   const float scale = keys.place.size() > 4 && keys.place.compare(keys.place.size() - 4, 4, "_deg") == 0 ? kDeg : 1.0f;
   requireArray(keys);
   if (keys.size() == 0) fail(keys, "needs at least one [time, position] key");
   for (size_t i = 0; i < keys.size(); ++i) {
     const JsonNode k = keys.element(i);
-    if (!k.json().is_array() || k.size() != 2) fail(k, "must be [time, position] (got " + describeValue(k.json()) + ")");
+    if (!k.json().is_array() || k.size() != 2)
+      fail(k, "must be [time, position] (got " + describeValue(k.json()) + ")");
     ServoKey key;
     key.time = readNonNegative(k.element(0));
     key.position = readFloat(k.element(1)) * scale;
@@ -124,7 +129,8 @@ JointType parseJointType(const JsonNode& node, bool& isRope) {
 JointDesc parseJoint(const JsonNode& node, const SceneDesc& scene, const BodyNames& names) {
   requireObject(node);
   bool rope = false;
-  const JsonNode typeNode = requireMember(node, "type", "one of ball, hinge, fixed, distance, rope, slider, cone_twist");
+  const JsonNode typeNode =
+      requireMember(node, "type", "one of ball, hinge, fixed, distance, rope, slider, cone_twist");
   const JointType type = parseJointType(typeNode, rope);
   const bool distance = type == JointType::Distance;
   const bool hasAxis = type == JointType::Hinge || type == JointType::Slider || type == JointType::ConeTwist;
@@ -157,7 +163,8 @@ JointDesc parseJoint(const JsonNode& node, const SceneDesc& scene, const BodyNam
 
   // Anchors: world points, or one point in each body's frame.
   const JsonNode la = node.member("local_anchor_a"), lb = node.member("local_anchor_b");
-  const JsonNode wa = node.member(distance ? "anchor_a" : "anchor"), wb = distance ? node.member("anchor_b") : JsonNode{};
+  const JsonNode wa = node.member(distance ? "anchor_a" : "anchor");
+  const JsonNode wb = distance ? node.member("anchor_b") : JsonNode{};
   if (la.present() || lb.present()) {
     if (wa.present() || wb.present()) failAtKey(node, la.present() ? "local_anchor_a" : "local_anchor_b",
                                                  "give world anchors or local anchors, not both");
@@ -168,7 +175,8 @@ JointDesc parseJoint(const JsonNode& node, const SceneDesc& scene, const BodyNam
     j.anchorA = readVec3(requireMember(node, "anchor_a", "world point on body A (or local_anchor_a/local_anchor_b)"));
     j.anchorB = readVec3(requireMember(node, "anchor_b", "world point on body B"));
   } else {
-    j.anchorA = j.anchorB = readVec3(requireMember(node, "anchor", "world point of the joint (or local_anchor_a/local_anchor_b)"));
+    j.anchorA = j.anchorB =
+        readVec3(requireMember(node, "anchor", "world point of the joint (or local_anchor_a/local_anchor_b)"));
   }
   if (hasAxis) {
     const JsonNode axis = oneOf(node, "axis", "local_axis", true, "the joint axis [x, y, z]");
@@ -187,7 +195,8 @@ JointDesc parseJoint(const JsonNode& node, const SceneDesc& scene, const BodyNam
                 p.lower, p.upper);
     }
     const JsonNode motor = node.member("motor"), servo = node.member("servo");
-    if (motor.present() && servo.present()) failAtKey(node, "servo", "give either a motor (constant speed) or a servo (trajectory), not both");
+    if (motor.present() && servo.present())
+      failAtKey(node, "servo", "give either a motor (constant speed) or a servo (trajectory), not both");
     if (motor.present()) parseMotor(motor, p);
     if (servo.present()) parseServo(servo, hinge, p);
   }

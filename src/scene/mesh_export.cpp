@@ -48,7 +48,8 @@ bool exportMeshAsset(const std::string& path, const std::vector<Vec3>& vertices,
   mesh->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
   mesh->mNumVertices = static_cast<unsigned>(vertices.size());
   mesh->mVertices = new aiVector3D[vertices.size()];
-  for (size_t i = 0; i < vertices.size(); ++i) mesh->mVertices[i] = aiVector3D(vertices[i].x(), vertices[i].y(), vertices[i].z());
+  for (size_t i = 0; i < vertices.size(); ++i)
+    mesh->mVertices[i] = aiVector3D(vertices[i].x(), vertices[i].y(), vertices[i].z());
   mesh->mNumFaces = static_cast<unsigned>(indices.size() / 3);
   mesh->mFaces = new aiFace[mesh->mNumFaces];
   for (unsigned f = 0; f < mesh->mNumFaces; ++f) {

@@ -44,8 +44,9 @@ TriangleSoup makeRock(uint64_t seed, const Vec3& stretch, int subdivisions) {
   // Icosahedron, then split every edge at its midpoint (shared through a map) and push to the sphere.
   const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
   TriangleSoup m;
-  for (const Vec3& v : {Vec3(-1, t, 0), Vec3(1, t, 0), Vec3(-1, -t, 0), Vec3(1, -t, 0), Vec3(0, -1, t), Vec3(0, 1, t),
-                        Vec3(0, -1, -t), Vec3(0, 1, -t), Vec3(t, 0, -1), Vec3(t, 0, 1), Vec3(-t, 0, -1), Vec3(-t, 0, 1)})
+  for (const Vec3& v : {Vec3(-1, t, 0), Vec3(1, t, 0), Vec3(-1, -t, 0), Vec3(1, -t, 0), Vec3(0, -1, t),
+                        Vec3(0, 1, t), Vec3(0, -1, -t), Vec3(0, 1, -t), Vec3(t, 0, -1), Vec3(t, 0, 1),
+                        Vec3(-t, 0, -1), Vec3(-t, 0, 1)})
     m.vertices.push_back(v.normalized());
   m.indices = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4, 11, 10, 2, 10, 7, 6, 7, 1, 8,
                3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8, 3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
@@ -99,8 +100,9 @@ TriangleSoup makePillar(float height, float radius, int flutes) {
     bool fluted, square;
   };
   const float b = 0.12f * height, y0 = -0.5f * height;
-  const std::vector<Ring> rings{{0.0f, 1.5f, false, true}, {b * 0.5f, 1.5f, false, true},  {b * 0.5f, 1.15f, false, false},
-                                {b, 1.0f, true, false},      {height - b, 0.9f, true, false}, {height - b, 1.15f, false, false},
+  const std::vector<Ring> rings{{0.0f, 1.5f, false, true},         {b * 0.5f, 1.5f, false, true},
+                                {b * 0.5f, 1.15f, false, false},       {b, 1.0f, true, false},
+                                {height - b, 0.9f, true, false},       {height - b, 1.15f, false, false},
                                 {height - b * 0.5f, 1.5f, false, true}, {height, 1.5f, false, true}};
   for (const Ring& ring : rings)
     for (int k = 0; k < seg; ++k) {

@@ -133,7 +133,8 @@ WaterDesc parseWater(const JsonNode& node) {
 // Reads the whole document; throws SceneError at the first problem.
 void parseDocument(const JsonNode& root, ParseContext& ctx, SceneDesc& scene) {
   if (!root.json().is_object()) fail(root, "a scene file must hold one JSON object {...} (got " + describeValue(root.json()) + ")");
-  checkKeys(root, {"name", "description", "settings", "materials", "camera", "bodies", "water", "generators", "joints"});
+  checkKeys(root,
+            {"name", "description", "settings", "materials", "camera", "bodies", "water", "generators", "joints"});
   if (root.member("name").present()) scene.name = readString(root.member("name"));
   if (root.member("description").present()) readString(root.member("description"));
   if (root.member("settings").present()) parseSettings(root.member("settings"), scene.settings);

@@ -152,15 +152,18 @@ bool checkBody(Checker& c, const SceneDesc& scene, const BodyDesc& b) {
 
 bool checkJoint(Checker& c, const SceneDesc& scene, const JointDesc& j) {
   const int32_t n = static_cast<int32_t>(scene.bodies.size());
-  if (j.bodyA < -1 || j.bodyA >= n) return c.bad("body_a", "body index " + std::to_string(j.bodyA) + " is out of range");
-  if (j.bodyB < -1 || j.bodyB >= n) return c.bad("body_b", "body index " + std::to_string(j.bodyB) + " is out of range");
+  auto inRange = [&](int32_t b) { return b >= -1 && b < n; };
+  if (!inRange(j.bodyA)) return c.bad("body_a", "body index " + std::to_string(j.bodyA) + " is out of range");
+  if (!inRange(j.bodyB)) return c.bad("body_b", "body index " + std::to_string(j.bodyB) + " is out of range");
   if (j.bodyA == j.bodyB) return c.bad("body_b", "a joint needs two different bodies");
   auto dynamic = [&](int32_t i) { return i >= 0 && scene.bodies[size_t(i)].motion == MotionType::Dynamic; };
   if (!dynamic(j.bodyA) && !dynamic(j.bodyB)) return c.bad("body_b", "a joint needs a dynamic body");
-  if (!c.finiteVec("anchor", j.anchorA) || !c.finiteVec("anchor", j.anchorB) || !c.finiteVec("axis", j.axis)) return false;
+  if (!c.finiteVec("anchor", j.anchorA) || !c.finiteVec("anchor", j.anchorB) || !c.finiteVec("axis", j.axis))
+    return false;
   if (!(j.axis.norm() > 1e-6f)) return c.bad("axis", "must not be the zero vector");
   const JointDef& p = j.params;
-  for (float v : {p.lower, p.upper, p.minDistance, p.maxDistance, p.swingLimit, p.twistLower, p.twistUpper, p.motorSpeed})
+  for (float v :
+       {p.lower, p.upper, p.minDistance, p.maxDistance, p.swingLimit, p.twistLower, p.twistUpper, p.motorSpeed})
     if (!c.isFiniteNum("limits", v)) return false;
   if (p.limitEnabled && p.lower > p.upper) return c.bad("limits", "upper must be >= lower");
   if (p.twistLower > p.twistUpper) return c.bad("twist", "upper must be >= lower");

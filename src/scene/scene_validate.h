@@ -21,7 +21,8 @@ struct SceneIssue {
   std::string describe(const SceneDesc& scene) const;
 };
 
-/// Checks settings, materials, bodies, water volumes and joints. Returns false and fills `issue` with the first problem.
+/// Checks settings, materials, bodies, water volumes and joints. Returns false and fills `issue` with the
+/// first problem.
 bool validateScene(const SceneDesc& scene, SceneIssue& issue);
 
 /// True for shapes only a static body may have (planes, triangle meshes).

@@ -41,8 +41,8 @@ std::string statsCsv(const std::vector<StepStats>& steps) {
                   (unsigned long long)s.step, s.collisionMs, s.solveMs, s.integrateMs, s.totalMs, s.budgetMs,
                   s.deadlineMiss ? 1 : 0, s.iterationsChosen, s.iterationsMin, s.iterationsMean, s.iterationsMax,
                   (unsigned long long)s.rowIterations, double(s.residual), err, s.islands, s.largestIsland,
-                  s.awakeBodies, s.sleepingBodies, s.contacts, s.contactPoints, s.newPairs, stageNames(s.stages).c_str(),
-                  double(s.jointErrorM), double(s.jointErrorRad));
+                  s.awakeBodies, s.sleepingBodies, s.contacts, s.contactPoints, s.newPairs,
+                  stageNames(s.stages).c_str(), double(s.jointErrorM), double(s.jointErrorRad));
     out += line;
   }
   return out;

@@ -144,6 +144,40 @@ TEST(JointDrift, ConeTwistStaysInsideItsCone) {
   EXPECT_LT(maxSwing, 0.5f + 0.03f);
 }
 
+TEST(JointLoops, ABridgeOfDoubleJointsHolds) {
+  // 20 planks, each joined to the next at both edges: every second joint closes a loop, so it is solved
+  // as a soft constraint outside the tree. It must stay together and not wind up.
+  // Hung slack, in a V: 15 degrees down to the middle and up again.
+  World w;
+  const int n = 20;
+  const float pitch = 0.55f, slope = 0.26f;
+  std::vector<Vec3> hinge;
+  for (int i = 0; i <= n; ++i) {
+    const float down = float(std::min(i, n - i));
+    hinge.push_back(Vec3(pitch * std::cos(slope) * float(i), 5.0f - pitch * std::sin(slope) * down, 0.0f));
+  }
+  std::vector<uint32_t> planks;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 d = hinge[size_t(i + 1)] - hinge[size_t(i)];
+    const Quat q(Eigen::AngleAxisf(std::atan2(d.y(), d.x()), Vec3::UnitZ()));
+    planks.push_back(addBox(w, 0.5f * (hinge[size_t(i)] + hinge[size_t(i + 1)]), Vec3(0.25f, 0.05f, 1.0f), 5.0f, q));
+  }
+  for (int i = 0; i <= n; ++i) {
+    const uint32_t a = i == 0 ? kWorldBody : planks[size_t(i - 1)], b = i == n ? kWorldBody : planks[size_t(i)];
+    for (const float z : {-0.9f, 0.9f}) addJointAt(w, JointType::Ball, a, b, hinge[size_t(i)] + Vec3(0.0f, 0.0f, z));
+  }
+  const float start = w.bodies().xf[planks[n / 2]].p.y();
+  const double e0 = w.kineticEnergy() + w.potentialEnergy();
+  float worst = 0.0f;
+  for (int i = 0; i < 600; ++i) {
+    w.step();
+    worst = std::max(worst, worstJointError(w).linear);
+  }
+  EXPECT_LT(worst, 0.03f);
+  EXPECT_LT(w.kineticEnergy() + w.potentialEnergy(), e0) << "no energy may be pumped in";
+  EXPECT_GT(w.bodies().xf[planks[n / 2]].p.y(), start) << "from a V it swings into a rounder curve";
+}
+
 TEST(JointLimits, HingeLimitHoldsAgainstGravity) {
   // A plank hinged at one end about z; gravity swings it down, the limit stops it at -0.5 rad.
   World w;

@@ -185,6 +185,8 @@ TEST(SceneFiles, TheDocumentedExampleLoads) {
   const SceneDesc s = parseOk(text.substr(begin + 8, end - begin - 8));
   EXPECT_EQ(s.name, "small");
   EXPECT_EQ(s.bodies.size(), 2u + 1u + 5u);
+  ASSERT_EQ(s.joints.size(), 1u);
+  EXPECT_EQ(s.joints[0].bodyB, 0);
 }
 
 }  // namespace
