@@ -23,6 +23,12 @@ struct Result {
   std::string err;  ///< stderr
 };
 
+// The state_hash a run wrote into DIR/summary.json ("" if none).
+std::string summaryHash(const fs::path& dir) {
+  std::ifstream in(dir / "summary.json");
+  return nlohmann::json::parse(in).value("state_hash", std::string());
+}
+
 class RunCommand : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -186,16 +192,8 @@ TEST_F(RunCommand, SameRunTwiceGivesSameHash) {
   const fs::path a = dir_ / "a", b = dir_ / "b";
   ASSERT_EQ(haif("run '" + kStacks + "' --no-render --frames 20 --threads 1 --out '" + a.string() + "'").exitCode, 0);
   ASSERT_EQ(haif("run '" + kStacks + "' --no-render --frames 20 --threads 4 --out '" + b.string() + "'").exitCode, 0);
-  auto hashOf = [](const fs::path& d) {
-    std::ifstream in(d / "summary.json");
-    return nlohmann::json::parse(in).value("state_hash", std::string());
-  };
-  EXPECT_EQ(hashOf(a), hashOf(b)) << "fixed mode must not depend on the thread count";
+  EXPECT_EQ(summaryHash(a), summaryHash(b)) << "fixed mode must not depend on the thread count";
 }
-
-}  // namespace
-
-namespace {
 
 // Rendering only reads the world: the run's state_hash is the same with and without frames.
 TEST_F(RunCommand, RenderingDoesNotChangeTheSimulation) {
@@ -205,12 +203,8 @@ TEST_F(RunCommand, RenderingDoesNotChangeTheSimulation) {
                         b.string() + "'");
   ASSERT_EQ(r.exitCode, 0) << r.err;
   ASSERT_TRUE(fs::exists(b / "frames" / "frame_00000.png")) << "the rendered run wrote no frames";
-  auto hashOf = [](const fs::path& d) {
-    std::ifstream in(d / "summary.json");
-    return nlohmann::json::parse(in).value("state_hash", std::string());
-  };
-  EXPECT_FALSE(hashOf(a).empty());
-  EXPECT_EQ(hashOf(a), hashOf(b));
+  EXPECT_FALSE(summaryHash(a).empty());
+  EXPECT_EQ(summaryHash(a), summaryHash(b));
 }
 
 }  // namespace
