@@ -62,6 +62,8 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
     }
   }
 
+  for (int r = 0; r < ContactConstraint::kRows; ++r) cc.delta[r] = cc.direction[r] = 0.0f;
+
   // Friction at the centre of the points, about the mean normal.
   if (cc.count == 0) return;
   centre /= float(cc.count);
@@ -163,6 +165,7 @@ float solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float o
       const float old = c.twistImpulse;
       c.twistImpulse = std::clamp(old - omega * c.twistMass * vt, -maxTwist, maxTwist);
       const float applied = c.twistImpulse - old;
+      c.delta[kMaxManifoldPoints + 2] = applied;
       wa -= applied * c.iAtw;
       wb += applied * c.iBtw;
     }
@@ -184,6 +187,8 @@ float solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float o
       c.tangentImpulse1 = n1;
       c.tangentImpulse2 = n2;
       const float a1 = n1 - old1, a2 = n2 - old2;
+      c.delta[kMaxManifoldPoints] = a1;
+      c.delta[kMaxManifoldPoints + 1] = a2;
       const Vec3 P = a1 * c.tangent1 + a2 * c.tangent2;
       va -= mA * P;
       wa -= a1 * c.iAt1 + a2 * c.iAt2;
@@ -216,6 +221,7 @@ float solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float o
     for (int i = 0; i < m; ++i) {
       const ContactConstraint::Point& p = c.points[i];
       const float applied = p.normalImpulse - start[i];
+      c.delta[i] = applied;
       va -= (mA * applied) * p.normal;
       wa -= applied * p.iAn;
       vb += (mB * applied) * p.normal;
@@ -232,6 +238,61 @@ float solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float o
     }
   }
   return residual;
+}
+
+double sweepChange(const ContactConstraint* cs, size_t n) {
+  double sum = 0.0;
+  for (size_t k = 0; k < n; ++k)
+    for (int r = 0; r < ContactConstraint::kRows; ++r) sum += double(cs[k].delta[r]) * double(cs[k].delta[r]);
+  return sum;
+}
+
+void startDirection(ContactConstraint* cs, size_t n) {
+  for (size_t k = 0; k < n; ++k)
+    for (int r = 0; r < ContactConstraint::kRows; ++r) cs[k].direction[r] = cs[k].delta[r];
+}
+
+void accelerate(BodyStore& bodies, ContactConstraint* cs, size_t n, float beta) {
+  constexpr int t1 = kMaxManifoldPoints, t2 = kMaxManifoldPoints + 1, tw = kMaxManifoldPoints + 2;
+  for (size_t k = 0; k < n; ++k) {
+    ContactConstraint& c = cs[k];
+    if (c.count == 0) continue;
+    float* d = c.direction;
+    Vec3 P = Vec3::Zero(), angA = Vec3::Zero(), angB = Vec3::Zero();
+    float normalTotal = 0.0f;
+    for (int i = 0; i < c.count; ++i) {
+      ContactConstraint::Point& p = c.points[i];
+      const float old = p.normalImpulse;
+      p.normalImpulse = std::max(0.0f, old + beta * d[i]);
+      const float applied = p.normalImpulse - old;
+      P += applied * p.normal;
+      angA += applied * p.iAn;
+      angB += applied * p.iBn;
+      normalTotal += p.normalImpulse;
+    }
+    // Friction stays inside the cone of the new normal impulses.
+    const float limit = c.friction * normalTotal;
+    float n1 = c.tangentImpulse1 + beta * d[t1], n2 = c.tangentImpulse2 + beta * d[t2];
+    const float len2 = n1 * n1 + n2 * n2;
+    if (len2 > limit * limit) {
+      const float scale = len2 > 0.0f ? limit / std::sqrt(len2) : 0.0f;
+      n1 *= scale;
+      n2 *= scale;
+    }
+    const float a1 = n1 - c.tangentImpulse1, a2 = n2 - c.tangentImpulse2;
+    c.tangentImpulse1 = n1;
+    c.tangentImpulse2 = n2;
+    P += a1 * c.tangent1 + a2 * c.tangent2;
+    angA += a1 * c.iAt1 + a2 * c.iAt2;
+    angB += a1 * c.iBt1 + a2 * c.iBt2;
+    const float maxTwist = limit * c.twistRadius;
+    const float twist = std::clamp(c.twistImpulse + beta * d[tw], -maxTwist, maxTwist);
+    angA += (twist - c.twistImpulse) * c.iAtw;
+    angB += (twist - c.twistImpulse) * c.iBtw;
+    c.twistImpulse = twist;
+    apply(bodies, c, P, angA, angB);
+    for (int r = 0; r < ContactConstraint::kRows; ++r) d[r] = beta * d[r] + c.delta[r];
+  }
 }
 
 void storeImpulses(const ContactConstraint* cs, size_t n, Contact* contacts) {

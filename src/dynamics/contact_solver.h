@@ -61,6 +61,11 @@ struct ContactConstraint {
   float twistMass;                  // 1 / (n (I_A^-1 + I_B^-1) n)
   float twistRadius;                // lever (m) turning the friction limit into a twist limit
   float tangentImpulse1, tangentImpulse2, twistImpulse;
+
+  /// Rows in the order of `delta` and `direction`: the normal rows, then tangent 1, tangent 2, twist.
+  static constexpr int kRows = kMaxManifoldPoints + 3;
+  float delta[kRows];      ///< impulse change of each row in the last sweep (unused rows stay 0)
+  float direction[kRows];  ///< conjugate direction of the accelerated solve (see accelerate)
 };
 
 /// Passes of projected Gauss-Seidel over a manifold's own normal rows per sweep. Row by row with
@@ -83,6 +88,18 @@ void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n);
 /// the residual that early stopping compares against a tolerance. `useBias` false: the relax
 /// sweep, run after positions were integrated, which removes the position-correction velocity.
 float solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias);
+
+/// Σ over the rows of delta²: the squared norm of the last sweep's impulse change.
+double sweepChange(const ContactConstraint* cs, size_t n);
+
+/// Nonsmooth nonlinear conjugate gradient on top of the sweeps (after Silcowitz, Niebe and Erleben
+/// 2010). A sweep's impulse change is the negative gradient of the projected problem; momentum
+/// along the previous direction, scaled by β = |Δ_k|² / |Δ_{k-1}|², carries the low-frequency part
+/// of the solution (the weight of a tall stack) much faster than sweeps alone. `startDirection`
+/// begins a direction (first sweep, or a restart when β > 1); `accelerate` steps the impulses
+/// along β times the direction, projected onto their bounds, and updates the direction.
+void startDirection(ContactConstraint* cs, size_t n);
+void accelerate(BodyStore& bodies, ContactConstraint* cs, size_t n, float beta);
 
 /// Writes the accumulated impulses back to the persistent contacts for the next step's warm start.
 void storeImpulses(const ContactConstraint* cs, size_t n, Contact* contacts);

@@ -187,9 +187,8 @@ void World::stiffenJointedBodies() {
   for (uint32_t i : islands_.bodies) stiffenInertia(bodies_, i, jointStiffness_[i], settings_.dt);
 }
 
-// Rows of island k's joints, warm started; returns the island's joint tree (null when joints are solved
-// one by one).
-JointTree* World::prepareJoints(uint32_t k, const SolverParams& sp) {
+// Rows of island k's joints, warm started, and its joint tree factorised (when joints are solved as a tree).
+void World::prepareJoints(uint32_t k, const SolverParams& sp) {
   const Island& isl = islands_.islands[k];
   JointConstraint* js = jointConstraints_.data() + isl.firstJoint;
   const uint32_t nj = isl.jointCount;
@@ -197,9 +196,7 @@ JointTree* World::prepareJoints(uint32_t k, const SolverParams& sp) {
   const float time = float(stepCount_ + 1) * sp.dt;
   for (uint32_t j = 0; j < nj; ++j) prepareJoint(bodies_, joints_[ids[j]], ids[j], sp, settings_.joints, time, js[j]);
   if (sp.warmStart) warmStartJoints(bodies_, js, nj);
-  if (!settings_.joints.treeSolve) return nullptr;
-  jointTrees_[k].build(js, nj);
-  return &jointTrees_[k];
+  if (settings_.joints.treeSolve) jointTrees_[k].build(js, nj);
 }
 
 // After the relax sweeps: keep the impulses for the next step, then (the rows being free now) project the
@@ -361,6 +358,71 @@ void World::forEachIsland(F&& f) {
   });
 }
 
+// Runs f(begin, end) over island k's contact range and returns the largest residual f reports. A
+// split island runs its strips in two parallel phases, even strips then odd ones, then its tail
+// (see island_split.h); any other island is one range on the calling thread.
+template <class F>
+float World::forEachStrip(uint32_t k, F&& f) {
+  const int32_t li = layoutOf_[k];
+  if (li < 0) return f(0u, islands_.islands[k].contactCount);
+  const StripLayout& layout = layouts_[li];
+  float* res = stripResidual_.data() + size_t(li) * (kMaxStrips + 1);
+  float residual = 0.0f;
+  for (uint32_t phase = 0; phase < 2; ++phase) {
+    const uint32_t tasks = (layout.strips + 1 - phase) / 2;
+    parallelFor(tasks, 1, [&](uint32_t begin, uint32_t end) {
+      for (uint32_t t = begin; t < end; ++t) {
+        const uint32_t s = 2 * t + phase;
+        res[s] = f(layout.start[s], layout.start[s + 1]);
+      }
+    });
+    for (uint32_t t = 0; t < tasks; ++t) residual = std::max(residual, res[2 * t + phase]);
+  }
+  const uint32_t tail = layout.strips;
+  return std::max(residual, f(layout.start[tail], layout.start[tail + 1]));
+}
+
+// One sweep over island k: its contacts, then its joints. Joints after contacts: the joint tree,
+// solved exactly, ends each sweep intact. The other way round crates landing on a rope bridge left
+// their joints open, and Baumgarte turned that into a bounce.
+float World::sweepIsland(uint32_t k, bool useBias) {
+  const Island& isl = islands_.islands[k];
+  ContactConstraint* cs = constraints_.data() + isl.firstContact;
+  const float omega = settings_.omega;
+  float residual = forEachStrip(k, [&](uint32_t b, uint32_t e) {
+    return solveIteration(bodies_, cs + b, e - b, omega, useBias);
+  });
+  if (isl.jointCount > 0) {
+    JointTree* tree = settings_.joints.treeSolve ? &jointTrees_[k] : nullptr;
+    residual = std::max(residual, solveJointIteration(bodies_, jointConstraints_.data() + isl.firstJoint,
+                                                      isl.jointCount, tree, omega, useBias));
+  }
+  return residual;
+}
+
+// Giant islands without joints are cut into strips for parallel sweeps. The island's largest
+// unsplittable piece of work then becomes its critical path, which is what the controller plans with.
+void World::splitGiantIslands() {
+  const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
+  layoutOf_.assign(m, -1);
+  const Vec3 up = settings_.gravity.squaredNorm() > 0.0f ? Vec3(-settings_.gravity.normalized()) : Vec3::UnitY();
+  uint32_t used = 0, largest = 0;
+  for (uint32_t k = 0; k < m; ++k) {
+    const Island& isl = islands_.islands[k];
+    if (isl.rows >= kSplitRows && isl.jointCount == 0) {
+      if (layouts_.size() <= used) layouts_.emplace_back();
+      splitter_.split(bodies_, contacts_, up, islands_, k, layouts_[used]);
+      layoutOf_[k] = int32_t(used);
+      largest = std::max(largest, layouts_[used].criticalRows());
+      ++used;
+    } else {
+      largest = std::max(largest, isl.rows);
+    }
+  }
+  stripResidual_.resize(layouts_.size() * (kMaxStrips + 1));
+  islands_.largestRows = largest;
+}
+
 void World::solveIslands(int iterations) {
   const SolverParams sp = solverParams();
   const float tol = settings_.residualTolerance;
@@ -368,27 +430,42 @@ void World::solveIslands(int iterations) {
   forEachIsland([&](uint32_t k) {
     const Island& isl = islands_.islands[k];
     ContactConstraint* cs = constraints_.data() + isl.firstContact;
+    const uint32_t* ids = islands_.contacts.data() + isl.firstContact;
+    auto prepare = [&](uint32_t begin, uint32_t end) {
+      for (uint32_t j = begin; j < end; ++j) prepareContact(bodies_, contacts_[ids[j]], ids[j], sp, cs[j]);
+    };
+    if (layoutOf_[k] >= 0) parallelFor(isl.contactCount, 256, prepare);
+    else prepare(0, isl.contactCount);
+    if (sp.warmStart) forEachStrip(k, [&](uint32_t b, uint32_t e) {
+      warmStart(bodies_, cs + b, e - b);
+      return 0.0f;
+    });
+    if (isl.jointCount > 0) prepareJoints(k, sp);
+    // Momentum on the contacts of joint-free islands; a joint tree is solved exactly every sweep.
+    const bool cg = settings_.accelerate && isl.jointCount == 0;
     const uint32_t n = isl.contactCount;
-    for (uint32_t j = 0; j < n; ++j) {
-      const uint32_t ci = islands_.contacts[isl.firstContact + j];
-      prepareContact(bodies_, contacts_[ci], ci, sp, cs[j]);
-    }
-    if (sp.warmStart) warmStart(bodies_, cs, n);
-    JointConstraint* js = jointConstraints_.data() + isl.firstJoint;
-    const uint32_t nj = isl.jointCount;
-    JointTree* tree = nj > 0 ? prepareJoints(k, sp) : nullptr;
+    double lastChange = 0.0;
     int it = 0;
     float residual = 0.0f;
     while (it < iterations) {
-      residual = solveIteration(bodies_, cs, n, sp.omega, true);
-      // Joints after contacts: the joint tree, solved exactly, ends each sweep intact. The other way round
-      // crates landing on a rope bridge left its joints open, and Baumgarte turned that into a bounce.
-      if (nj > 0) residual = std::max(residual, solveJointIteration(bodies_, js, nj, tree, sp.omega, true));
+      residual = sweepIsland(k, true);
       ++it;
       // Converged islands stop: precision nobody can see is not paid for.
       if (tol > 0.0f && it >= iMin && residual < tol) break;
+      if (!cg || it == iterations) continue;  // the main sweeps end on a sweep, not a momentum step
+      const double change = sweepChange(cs, n);
+      if (it == 1 || lastChange <= 0.0 || change > lastChange) {
+        startDirection(cs, n);  // first direction, or a restart: the last step overshot
+      } else {
+        const float beta = float(change / lastChange);
+        forEachStrip(k, [&](uint32_t b, uint32_t e) {
+          accelerate(bodies_, cs + b, e - b, beta);
+          return 0.0f;
+        });
+      }
+      lastChange = change;
     }
-    islandIterations_[k] = n + nj > 0 ? it : 0;
+    islandIterations_[k] = isl.contactCount + isl.jointCount > 0 ? it : 0;
     islandResidual_[k] = residual;
   });
   if (tol > 0.0f && iterations > 0) shareSpareIterations(iterations);
@@ -415,15 +492,11 @@ void World::shareSpareIterations(int iterations) {
     any = true;
   }
   if (!any) return;
-  const float omega = settings_.omega;
   forEachIsland([&](uint32_t k) {
-    if (islandExtra_[k] == 0) return;
-    const Island& isl = islands_.islands[k];
-    ContactConstraint* cs = constraints_.data() + isl.firstContact;
     int it = 0;
     float residual = islandResidual_[k];
     while (it < islandExtra_[k] && residual >= tol) {
-      residual = solveIteration(bodies_, cs, isl.contactCount, omega, true);
+      residual = sweepIsland(k, true);
       ++it;
     }
     islandIterations_[k] += it;
@@ -432,21 +505,16 @@ void World::shareSpareIterations(int iterations) {
 }
 
 void World::relaxIslands(int relaxIterations) {
-  const float omega = settings_.omega;
   forEachIsland([&](uint32_t k) {
     const Island& isl = islands_.islands[k];
-    ContactConstraint* cs = constraints_.data() + isl.firstContact;
-    const uint32_t n = isl.contactCount;
-    JointConstraint* js = jointConstraints_.data() + isl.firstJoint;
-    const uint32_t nj = isl.jointCount;
-    JointTree* tree = nj > 0 && settings_.joints.treeSolve ? &jointTrees_[k] : nullptr;
-    for (int it = 0; it < relaxIterations; ++it) {
-      solveIteration(bodies_, cs, n, omega, false);
-      if (nj > 0) solveJointIteration(bodies_, js, nj, tree, omega, false);
-    }
-    storeImpulses(cs, n, contacts_.data());
-    if (nj > 0) finishJoints(k);
-    if (n + nj > 0) islandIterations_[k] += relaxIterations;
+    for (int it = 0; it < relaxIterations; ++it) sweepIsland(k, false);
+    const ContactConstraint* cs = constraints_.data() + isl.firstContact;
+    if (layoutOf_[k] >= 0)
+      parallelFor(isl.contactCount, 1024, [&](uint32_t b, uint32_t e) { storeImpulses(cs + b, e - b, contacts_.data()); });
+    else
+      storeImpulses(cs, isl.contactCount, contacts_.data());
+    if (isl.jointCount > 0) finishJoints(k);
+    if (isl.contactCount + isl.jointCount > 0) islandIterations_[k] += relaxIterations;
   });
 }
 
@@ -625,6 +693,7 @@ void World::step() {
   }
   islandBuilder_.build(bodies_, contacts_, joints_, islands_);
   if (settings_.topDownOrder) orderContactsTopDown();
+  splitGiantIslands();
   std::fill(islandOfBody_.begin(), islandOfBody_.end(), -1);
   for (uint32_t k = 0; k < islands_.islands.size(); ++k) {
     const Island& isl = islands_.islands[k];

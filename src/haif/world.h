@@ -12,6 +12,7 @@
 #include "dynamics/contact_solver.h"
 #include "dynamics/joint_solver.h"
 #include "dynamics/joint_tree.h"
+#include "haif/island_split.h"
 #include "haif/islands.h"
 #include "haif/iteration_controller.h"
 #include "haif/step_stats.h"
@@ -35,6 +36,7 @@ struct WorldSettings {
   bool warmStart = true;
   float maxPushVelocity = 0.2f;     ///< cap on the Baumgarte push-out speed (m/s)
   bool topDownOrder = true;         ///< solve the highest contacts of an island first
+  bool accelerate = true;           ///< conjugate-gradient momentum between sweeps (contact_solver.h)
   JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)
   bool sleeping = false;
   float timeToSleep = 0.5f;         ///< s an island must rest before it sleeps
@@ -120,6 +122,9 @@ class World {
   void narrowPhase();
   void solve(int iterations);
   void solveIslands(int iterations);
+  void splitGiantIslands();
+  template <class F> float forEachStrip(uint32_t island, F&& f);
+  float sweepIsland(uint32_t island, bool useBias);
   void shareSpareIterations(int iterations);
   void relaxIslands(int relaxIterations);
   void summariseIterations();
@@ -131,7 +136,7 @@ class World {
   void putIslandToSleep(const Island& isl);
   void wakeJointedBodies();
   void stiffenJointedBodies();
-  JointTree* prepareJoints(uint32_t island, const SolverParams& sp);
+  void prepareJoints(uint32_t island, const SolverParams& sp);
   void finishJoints(uint32_t island);
   void breakJoints();
   void measureJointErrors();
@@ -159,6 +164,10 @@ class World {
   std::vector<float> islandResidual_;
   std::vector<int> islandExtra_;      // spare iterations given to unconverged islands this step
   std::vector<uint32_t> batchStart_;  // island batches for parallel solving
+  IslandSplitter splitter_;
+  std::vector<int32_t> layoutOf_;     // per island: index into layouts_, or -1 when not split
+  std::vector<StripLayout> layouts_;  // strips of this step's split islands (grows, then reused)
+  std::vector<float> stripResidual_;  // per layout, per strip: residual of its last sweep
 
   std::vector<Joint> joints_;
   std::vector<JointConstraint> jointConstraints_;  // solver rows, grouped by island like constraints_

@@ -16,6 +16,7 @@ WorldSettings worldSettingsFor(const SceneDesc& scene) {
   s.beta = scene.settings.beta;
   s.slop = scene.settings.slop;
   s.sleeping = scene.settings.sleeping;
+  s.accelerate = scene.settings.accelerate;
   return s;
 }
 

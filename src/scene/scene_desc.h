@@ -91,6 +91,7 @@ struct SimSettings {
   float beta = 0.2f;        ///< Baumgarte factor
   float slop = 0.005f;      ///< allowed penetration (m) before position correction
   bool sleeping = false;    ///< bodies (islands) at rest go to sleep
+  bool accelerate = true;   ///< conjugate-gradient momentum between solver sweeps
   int frames = 300;         ///< default number of steps for `haif run`
 };
 

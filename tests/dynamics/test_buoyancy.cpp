@@ -1,6 +1,6 @@
 // Buoyancy (Archimedes): a body lighter than water floats with submerged fraction rho_body / rho_water,
 // a heavier one sinks; scenes without water skip the pass.
-#include "dynamics_test_util.h"
+#include "support/physics_test_util.h"
 
 namespace haif::test {
 namespace {

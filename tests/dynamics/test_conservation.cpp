@@ -1,6 +1,6 @@
 // Free flight in zero gravity: nothing acts on the bodies, so momentum (and angular momentum) must
 // be conserved; contacts apply equal and opposite impulses, so they conserve them too.
-#include "dynamics_test_util.h"
+#include "support/physics_test_util.h"
 
 namespace haif::test {
 namespace {

@@ -1,5 +1,5 @@
 // The same scene stepped twice gives bit-identical states (the replay/fixed-mode guarantee rests on it).
-#include "dynamics_test_util.h"
+#include "support/physics_test_util.h"
 
 #include <random>
 

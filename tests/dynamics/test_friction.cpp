@@ -1,5 +1,5 @@
 // Coulomb friction on a ramp: a box slides when tan(theta) > mu and sticks when tan(theta) < mu.
-#include "dynamics_test_util.h"
+#include "support/physics_test_util.h"
 
 namespace haif::test {
 namespace {

@@ -1,6 +1,6 @@
 // Joints (issue 7): drift bounds per joint type at 10 iterations, limits, motors, servos, breaking,
 // collision filtering, islands and determinism.
-#include "dynamics_test_util.h"
+#include "support/physics_test_util.h"
 #include "joint_test_util.h"
 
 #include <cmath>

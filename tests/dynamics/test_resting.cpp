@@ -1,5 +1,5 @@
 // Resting contact: a box on the ground and a 10-box stack must stay put (no drift, no sinking).
-#include "dynamics_test_util.h"
+#include "support/physics_test_util.h"
 
 #include <cstdio>
 

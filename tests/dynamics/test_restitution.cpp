@@ -1,5 +1,5 @@
 // Restitution: a ball dropped from h rebounds to e^2 h (v' = -e v at impact).
-#include "dynamics_test_util.h"
+#include "support/physics_test_util.h"
 
 namespace haif::test {
 namespace {

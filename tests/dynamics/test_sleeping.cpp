@@ -1,5 +1,5 @@
 // Sleeping: a resting stack goes to sleep, does no solver work while asleep, and wakes when hit.
-#include "dynamics_test_util.h"
+#include "support/physics_test_util.h"
 
 namespace haif::test {
 namespace {

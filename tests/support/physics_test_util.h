@@ -1,4 +1,4 @@
-// Small scene builders shared by the dynamics tests.
+// Small scene builders shared by the physics tests (dynamics, haif).
 #pragma once
 
 #include "haif/world.h"
@@ -36,6 +36,17 @@ inline uint32_t addSphere(World& w, const Vec3& p, float r = 0.5f, float mass = 
   d.xf.p = p;
   d.mass = mass;
   return w.addBody(d);
+}
+
+/// A column of `count` unit boxes (mass 1) standing on the ground at (x, z), touching.
+inline void addColumn(World& w, int count, float x = 0.0f, float z = 0.0f) {
+  for (int h = 0; h < count; ++h) addBox(w, Vec3(x, 0.5f + float(h), z));
+}
+
+/// The 2D pyramid of DESIGN.md §6 (large_pyramid) with `base` boxes in the bottom row, centred on x = 0.
+inline void addPyramid2d(World& w, int base) {
+  for (int i = 0; i < base; ++i)
+    for (int j = i; j < base; ++j) addBox(w, Vec3(0.5f * float(i + 1) + float(j - i) - 0.5f * float(base), 0.5f + float(i), 0.0f));
 }
 
 /// Deepest penetration (m) over the current contact points (speculative points have depth < 0).

@@ -1,0 +1,118 @@
+// Giant islands are cut into strips whose two phases can be swept in parallel (haif/island_split.h).
+#include "haif/island_split.h"
+#include "haif/world.h"
+#include "support/physics_test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+namespace haif {
+namespace {
+
+using test::addBox;
+using test::addGround;
+using test::addPyramid2d;
+
+/// A world holding a pyramid big enough to be split, advanced a few steps so its contacts exist.
+void buildPyramid(World& w, int base, int steps) {
+  addGround(w);
+  addPyramid2d(w, base);
+  for (int s = 0; s < steps; ++s) w.step();
+}
+
+TEST(IslandSplit, StripsOfOnePhaseShareNoDynamicBody) {
+  World w;
+  buildPyramid(w, 40, 2);
+  const IslandSet& set = w.islands();
+  ASSERT_EQ(set.islands.size(), 1u);
+  ASSERT_GE(set.islands[0].rows, kSplitRows);
+
+  IslandSet copy = set;
+  IslandSplitter splitter;
+  StripLayout layout;
+  splitter.split(w.bodies(), w.contacts(), Vec3::UnitY(), copy, 0, layout);
+  ASSERT_GE(layout.strips, 2u);
+  const Island& isl = copy.islands[0];
+  EXPECT_EQ(layout.start[layout.strips + 1], isl.contactCount);
+
+  // The same contacts, regrouped.
+  std::multiset<uint32_t> before(set.contacts.begin(), set.contacts.end());
+  std::multiset<uint32_t> after(copy.contacts.begin(), copy.contacts.end());
+  EXPECT_EQ(before, after);
+
+  auto dynamicBodies = [&](uint32_t s) {
+    std::set<uint32_t> bodies;
+    for (uint32_t j = layout.start[s]; j < layout.start[s + 1]; ++j) {
+      const Contact& c = w.contacts()[copy.contacts[isl.firstContact + j]];
+      for (uint32_t b : {c.a, c.b})
+        if (w.bodies().isDynamic(b)) bodies.insert(b);
+    }
+    return bodies;
+  };
+  uint32_t tasksWithWork = 0;
+  for (uint32_t phase = 0; phase < 2; ++phase) {
+    std::set<uint32_t> seen;
+    for (uint32_t s = phase; s < layout.strips; s += 2) {
+      const std::set<uint32_t> mine = dynamicBodies(s);
+      if (!mine.empty()) ++tasksWithWork;
+      for (uint32_t b : mine) EXPECT_TRUE(seen.insert(b).second) << "body " << b << " in two strips of phase " << phase;
+    }
+  }
+  EXPECT_GE(tasksWithWork, layout.strips - 1) << "strips should all carry work";
+  // Unit boxes never span more than neighbouring strips: nothing is left for the serial tail.
+  EXPECT_EQ(layout.start[layout.strips + 1] - layout.start[layout.strips], 0u);
+  // The critical path is shorter than the island.
+  EXPECT_LT(layout.criticalRows(), isl.rows);
+}
+
+TEST(IslandSplit, KeepsTheSolveOrderInsideEachStrip) {
+  World w;
+  buildPyramid(w, 40, 2);
+  const IslandSet& set = w.islands();
+  const Island& isl = set.islands[0];
+  // The island's contacts arrive in solve order (top-down); each strip keeps that order.
+  std::vector<uint32_t> rank(w.contacts().size());
+  for (uint32_t j = 0; j < isl.contactCount; ++j) rank[set.contacts[isl.firstContact + j]] = j;
+  IslandSet copy = set;
+  IslandSplitter splitter;
+  StripLayout layout;
+  splitter.split(w.bodies(), w.contacts(), Vec3::UnitY(), copy, 0, layout);
+  for (uint32_t s = 0; s <= layout.strips; ++s)
+    for (uint32_t j = layout.start[s] + 1; j < layout.start[s + 1]; ++j)
+      EXPECT_LT(rank[copy.contacts[isl.firstContact + j - 1]], rank[copy.contacts[isl.firstContact + j]])
+          << "strip " << s << " position " << j;
+}
+
+TEST(IslandSplit, AWideBodyGoesToTheSerialTail) {
+  World w;
+  addGround(w);
+  // A long plank lying across a row of 600 boxes: it touches boxes in every strip.
+  for (int i = 0; i < 600; ++i) addBox(w, Vec3(float(i) * 1.0f - 300.0f, 0.5f, 0.0f));
+  addBox(w, Vec3(0.0f, 1.25f, 0.0f), Vec3(300.0f, 0.25f, 0.5f), 600.0f);
+  w.step();
+  const IslandSet& set = w.islands();
+  ASSERT_EQ(set.islands.size(), 1u);
+  IslandSet copy = set;
+  IslandSplitter splitter;
+  StripLayout layout;
+  splitter.split(w.bodies(), w.contacts(), Vec3::UnitY(), copy, 0, layout);
+  ASSERT_GE(layout.strips, 2u);
+  EXPECT_GT(layout.start[layout.strips + 1] - layout.start[layout.strips], 0u);
+}
+
+TEST(IslandSplit, SameStateForAnyThreadCount) {
+  auto run = [](int threads) {
+    WorldSettings ws;
+    ws.threads = threads;
+    World w(ws);
+    buildPyramid(w, 40, 60);
+    return w.stateHash();
+  };
+  const uint64_t one = run(1);
+  EXPECT_EQ(run(2), one);
+  EXPECT_EQ(run(4), one);
+}
+
+}  // namespace
+}  // namespace haif
