@@ -34,6 +34,9 @@ void usage(FILE* out) {
       "                  [--out DIR] [--threshold T] [--max-diff-ratio R] [--min-ssim S]\n"
       "                  [--mask overlay|none|X0:Y0:X1:Y1[,...]] [--no-aa] [--no-diff-images]\n"
       "                  [--allow-adaptive]\n"
+      "  stress          stress scenes (scenes/stress/) judged by their checks; DIR/stress.json;\n"
+      "                  exit 0 all pass, 1 some fail, 2 bad input [SCENE|DIR ...] [--quick] [--out DIR]\n"
+      "                  [--threads T]\n"
       "  assets          write the generated mesh assets (OBJ, STL, PLY, glTF, GLB) [--out DIR]\n"
       "  help            this text\n",
       out);
@@ -57,6 +60,7 @@ int main(int argc, char** argv) {
   if (!std::strcmp(cmd, "diff")) return haif::commandDiff(argc, argv);
   if (!std::strcmp(cmd, "compare")) return haif::commandCompare(argc, argv);
   if (!std::strcmp(cmd, "reel")) return haif::commandReel(argc, argv);
+  if (!std::strcmp(cmd, "stress")) return haif::commandStress(argc, argv);
   if (!std::strcmp(cmd, "assets")) return haif::commandAssets(argc, argv);
   std::fprintf(stderr, "haif: unknown command '%s' (see 'haif help')\n", cmd);
   return 2;

@@ -5,6 +5,7 @@
 #include "collision/shape.h"
 #include "core/math.h"
 #include "dynamics/joint.h"
+#include "scene/stress_desc.h"
 
 #include <cstdint>
 #include <string>
@@ -112,6 +113,7 @@ struct SceneDesc {
   std::vector<WaterDesc> water;
   std::vector<JointDesc> joints;
   CameraDesc camera;
+  StressDesc stress;  ///< for `haif stress` only (docs/stress.md)
 };
 
 }  // namespace haif

@@ -6,6 +6,7 @@
 #include "scene/json_positions.h"
 #include "scene/json_reader.h"
 #include "scene/scene_validate.h"
+#include "scene/stress_parse.h"
 
 #include <cerrno>
 #include <cstring>
@@ -134,8 +135,8 @@ WaterDesc parseWater(const JsonNode& node) {
 // Reads the whole document; throws SceneError at the first problem.
 void parseDocument(const JsonNode& root, ParseContext& ctx, SceneDesc& scene) {
   if (!root.json().is_object()) fail(root, "a scene file must hold one JSON object {...} (got " + describeValue(root.json()) + ")");
-  checkKeys(root,
-            {"name", "description", "settings", "materials", "camera", "bodies", "water", "generators", "joints"});
+  checkKeys(root, {"name", "description", "settings", "materials", "camera", "bodies", "water", "generators", "joints",
+                  "stress"});
   if (root.member("name").present()) scene.name = readString(root.member("name"));
   if (root.member("description").present()) readString(root.member("description"));
   if (root.member("settings").present()) parseSettings(root.member("settings"), scene.settings);
@@ -170,6 +171,8 @@ void parseDocument(const JsonNode& root, ParseContext& ctx, SceneDesc& scene) {
     for (size_t i = 0; i < joints.size(); ++i) scene.joints.push_back(parseJoint(joints.element(i), scene, names));
   }
   scene.materials = ctx.materials;
+  // Checked here so a typo is caught by every command, used only by `haif stress`.
+  if (root.member("stress").present()) scene.stress = parseStress(root.member("stress"), scene);
 }
 
 // JSON pointer of a validation issue, for its line:column.

@@ -1,0 +1,128 @@
+// Small random worlds for the randomized stress test: random shapes (sphere, box, capsule, convex
+// hull), sizes, masses, velocities and overlaps above a ground box. Everything comes from one
+// std::mt19937 seeded with the world's seed, so a failing world is reproduced from its seed alone.
+#pragma once
+
+#include "collision/convex_hull.h"
+#include "haif/world.h"
+
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace haif::test {
+
+/// What the checks need to know about a random world besides the World itself.
+struct RandomWorld {
+  std::unique_ptr<World> world;
+  std::string description;      ///< one line per body, for failure messages
+  double maxStartSpeed = 0.0;   ///< m/s, fastest body at the start (angular motion of its extent included)
+  double maxStartHeight = 0.0;  ///< m, highest centre
+  double maxRadius = 0.0;       ///< m, largest bounding radius
+  double overlapAllowance = 0.0;  ///< J: energy pushing bodies out of their initial overlaps may add
+};
+
+inline float uniform(std::mt19937& rng, float lo, float hi) {
+  return std::uniform_real_distribution<float>(lo, hi)(rng);
+}
+/// Log-uniform: sizes and masses spread evenly over orders of magnitude.
+inline float logUniform(std::mt19937& rng, float lo, float hi) {
+  return std::exp(uniform(rng, std::log(lo), std::log(hi)));
+}
+
+inline Vec3 randomUnit(std::mt19937& rng) {
+  for (;;) {
+    const Vec3 v(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+    const float n = v.norm();
+    if (n > 0.1f && n <= 1.0f) return v / n;
+  }
+}
+
+inline Quat randomRotation(std::mt19937& rng) {
+  Quat q(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+  if (q.norm() < 1e-3f) return Quat::Identity();
+  q.normalize();
+  return q;
+}
+
+/// A random world: ground, 2 to 12 bodies in a 3 m x 3 m x 3 m region (so many start overlapping),
+/// sizes 0.05 to 1.5 m, masses 0.1 to 100 kg, speeds up to 10 m/s and 10 rad/s.
+inline RandomWorld makeRandomWorld(uint32_t seed) {
+  std::mt19937 rng(seed);
+  RandomWorld rw;
+  WorldSettings ws;  // defaults: 60 Hz, 10 iterations, fixed mode
+  rw.world = std::make_unique<World>(ws);
+  World& w = *rw.world;
+  BodyDef ground;
+  ground.kind = BodyKind::Static;
+  ground.shape = Shape::box(Vec3(500.0f, 1.0f, 500.0f));
+  ground.xf.p = Vec3(0.0f, -1.0f, 0.0f);
+  w.addBody(ground);
+
+  const int count = std::uniform_int_distribution<int>(2, 12)(rng);
+  const char* names[] = {"sphere", "box", "capsule", "hull"};
+  for (int k = 0; k < count; ++k) {
+    BodyDef d;
+    const int type = std::uniform_int_distribution<int>(0, 3)(rng);
+    const float size = logUniform(rng, 0.05f, 1.5f);  // bounding radius
+    float radius = size;
+    switch (type) {
+      case 0: d.shape = Shape::sphere(size); break;
+      case 1: {
+        const Vec3 h = size * Vec3(uniform(rng, 0.2f, 1.0f), uniform(rng, 0.2f, 1.0f), uniform(rng, 0.2f, 1.0f));
+        d.shape = Shape::box(h);
+        radius = h.norm();
+        break;
+      }
+      case 2: {
+        const float r = size * uniform(rng, 0.2f, 1.0f), hh = size * uniform(rng, 0.0f, 1.0f);
+        d.shape = Shape::capsule(r, hh);
+        radius = r + hh;
+        break;
+      }
+      default: {
+        // 6 to 16 points on a random ellipsoid: flat, long and irregular hulls alike.
+        const Vec3 axes = size * Vec3(uniform(rng, 0.2f, 1.0f), uniform(rng, 0.2f, 1.0f), uniform(rng, 0.2f, 1.0f));
+        const int n = std::uniform_int_distribution<int>(6, 16)(rng);
+        std::vector<Vec3> pts;
+        for (int i = 0; i < n; ++i) pts.push_back(randomUnit(rng).cwiseProduct(axes));
+        auto hull = buildConvexHull(pts, nullptr);
+        if (!hull) {  // a degenerate draw: use a box of the same size instead
+          d.shape = Shape::box(axes);
+          radius = axes.norm();
+          break;
+        }
+        radius = 0.0f;
+        for (const Vec3& p : pts) radius = std::max(radius, (p - hull->centroid).norm());
+        d.shape = Shape::convexHull(std::move(hull));
+        break;
+      }
+    }
+    d.xf.p = Vec3(uniform(rng, -1.5f, 1.5f), uniform(rng, 0.0f, 3.0f) + std::min(radius, 1.0f) * 0.5f,
+                  uniform(rng, -1.5f, 1.5f));
+    d.xf.q = randomRotation(rng);
+    d.mass = logUniform(rng, 0.1f, 100.0f);
+    d.linearVelocity = randomUnit(rng) * uniform(rng, 0.0f, 10.0f);
+    d.angularVelocity = randomUnit(rng) * uniform(rng, 0.0f, 10.0f);
+    d.friction = uniform(rng, 0.0f, 1.0f);
+    d.restitution = uniform(rng, 0.0f, 1.0f) < 0.7f ? 0.0f : uniform(rng, 0.0f, 0.8f);
+    w.addBody(d);
+
+    rw.maxStartSpeed = std::max(rw.maxStartSpeed, double(d.linearVelocity.norm() + d.angularVelocity.norm() * radius));
+    rw.maxStartHeight = std::max(rw.maxStartHeight, double(d.xf.p.y()));
+    rw.maxRadius = std::max(rw.maxRadius, double(radius));
+    // Pushed out of an overlap, a body may rise by its own size and keep a little push-out speed.
+    rw.overlapAllowance += d.mass * (9.81 * 2.0 * radius + 0.5 * 1.0 * 1.0);
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "  %s r=%.3f m=%.3f p=(%.2f %.2f %.2f) v=(%.2f %.2f %.2f) w=(%.2f %.2f %.2f) mu=%.2f e=%.2f\n",
+                  names[type], radius, d.mass, d.xf.p.x(), d.xf.p.y(), d.xf.p.z(), d.linearVelocity.x(),
+                  d.linearVelocity.y(), d.linearVelocity.z(), d.angularVelocity.x(), d.angularVelocity.y(),
+                  d.angularVelocity.z(), d.friction, d.restitution);
+    rw.description += line;
+  }
+  return rw;
+}
+
+}  // namespace haif::test

@@ -1,0 +1,110 @@
+// Randomized stress test: many small random worlds (tests/stress/random_world.h) must never produce
+// NaN, explode (speeds beyond what their start energy allows) or gain energy without cause.
+// Seeds are fixed, so every run checks the same worlds; a failing seed is reproduced by RandomWorldSeed.
+#include "random_world.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace haif::test {
+namespace {
+
+constexpr uint32_t kFirstSeed = 1000;
+constexpr int kWorlds = 200;
+constexpr int kSteps = 120;
+// Seeds that fail for a known, not yet fixed reason; each has a DISABLED_ regression test below that
+// says why. The sweep skips them so that it guards everything else.
+constexpr uint32_t kKnownFailures[] = {1113};
+
+bool knownFailure(uint32_t seed) {
+  for (uint32_t s : kKnownFailures)
+    if (s == seed) return true;
+  return false;
+}
+
+bool stateFinite(const World& w) {
+  const BodyStore& b = w.bodies();
+  for (size_t i = 0; i < b.size(); ++i)
+    if (!isFinite(b.xf[i].p) || !isFinite(b.v[i]) || !isFinite(b.w[i]) || !std::isfinite(b.xf[i].q.w()) ||
+        !isFinite(b.xf[i].q.vec()))
+      return false;
+  return true;
+}
+
+// Steps world `seed`; returns "" when it behaved, else what went wrong and when.
+std::string runRandomWorld(uint32_t seed) {
+  RandomWorld rw = makeRandomWorld(seed);
+  World& w = *rw.world;
+  const double g = 9.81;
+  // Fastest a body may get: all the start energy of the fastest, highest body as speed, after rising by
+  // its size out of an overlap; a heavy body hitting a light one can give it up to twice its own speed
+  // (e <= 1) and chains of such hits a little more, hence 3x, plus the push-out speed.
+  const double vFree =
+      std::sqrt(rw.maxStartSpeed * rw.maxStartSpeed + 2.0 * g * (rw.maxStartHeight + 2.0 * rw.maxRadius));
+  const double speedBound = 3.0 * vFree + 2.0;
+  const double e0 = w.kineticEnergy() + w.potentialEnergy();
+  const double energyBound = e0 + rw.overlapAllowance + 0.01 * std::fabs(e0) + 1e-6;
+  std::ostringstream why;
+  for (int s = 1; s <= kSteps; ++s) {
+    w.step();
+    if (!stateFinite(w)) why << "NaN/inf in the state after step " << s;
+    else {
+      const BodyStore& b = w.bodies();
+      double vMax = 0.0, yMin = 1e30;
+      for (size_t i = 0; i < b.size(); ++i) {
+        if (!b.isDynamic(uint32_t(i))) continue;
+        vMax = std::max(vMax, double(b.v[i].norm()));
+        yMin = std::min(yMin, double(b.xf[i].p.y()));
+      }
+      const double e = w.kineticEnergy() + w.potentialEnergy();
+      if (vMax > speedBound) why << "speed " << vMax << " m/s > bound " << speedBound << " after step " << s;
+      else if (e > energyBound)
+        why << "energy " << e << " J > bound " << energyBound << " J (start " << e0 << " J) after step " << s;
+      else if (yMin < -1.0) why << "a body fell through the ground (centre at y = " << yMin << ") after step " << s;
+    }
+    if (!why.str().empty()) {
+      why << "\n" << rw.description;
+      return why.str();
+    }
+  }
+  return "";
+}
+
+TEST(RandomWorlds, NeverNaNExplodeOrGainEnergy) {
+  int failures = 0;
+  for (int k = 0; k < kWorlds; ++k) {
+    const uint32_t seed = kFirstSeed + uint32_t(k);
+    if (knownFailure(seed)) continue;
+    const std::string problem = runRandomWorld(seed);
+    if (!problem.empty()) {
+      ++failures;
+      ADD_FAILURE() << "random world seed " << seed << ": " << problem;
+    }
+  }
+  EXPECT_EQ(failures, 0) << "of " << kWorlds << " random worlds";
+}
+
+// Found by the sweep: an 80 kg capsule much longer than it is thick (tiny inertia about its axis),
+// knocked into a tumble near the ground, spins up from 3 to 470 rad/s in 12 steps of free flight and
+// the world gains 16% energy. Cause: integratePositions (src/dynamics/integrator.cpp) keeps the world
+// angular momentum fixed and recomputes w = I_w(q_new)^-1 L after an explicit rotation; for a body with
+// one very small principal moment that update is unstable and pumps energy into the spin. Bodies with
+// joints already take the implicit gyroscopic step, which damps instead. The zero_g_spin stress scene
+// shows the same energy gain. Enable when free bodies get a stable (implicit or energy-conserving) update.
+TEST(RandomWorlds, DISABLED_Seed1113ThinCapsuleSpinsUp) { EXPECT_EQ(runRandomWorld(1113), ""); }
+
+TEST(RandomWorlds, SameSeedSameWorld) {
+  // Reproducibility is what makes a failing seed useful: the same seed must give the same run.
+  RandomWorld a = makeRandomWorld(kFirstSeed + 7), b = makeRandomWorld(kFirstSeed + 7);
+  ASSERT_EQ(a.description, b.description);
+  for (int s = 0; s < 30; ++s) {
+    a.world->step();
+    b.world->step();
+  }
+  EXPECT_EQ(a.world->stateHash(), b.world->stateHash());
+}
+
+}  // namespace
+}  // namespace haif::test
