@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -74,6 +75,17 @@ struct Renderer::Impl {
   std::vector<DrawGroup> groups;
   std::vector<uint8_t> readback;
   std::unique_ptr<TextRenderer> text;  // created on the first frame with the overlay enabled
+  RenderPhaseTimes phases;
+  std::chrono::steady_clock::time_point phaseStart;
+
+  // With timePhases: finishes the GL work queued so far and books the time since the last mark.
+  void mark(double* phase) {
+    if (!opt.timePhases) return;
+    gl.Finish();
+    const auto now = std::chrono::steady_clock::now();
+    if (phase) *phase = std::chrono::duration<double, std::milli>(now - phaseStart).count();
+    phaseStart = now;
+  }
 
   ~Impl() {
     if (!ctx) return;
@@ -409,6 +421,8 @@ struct Renderer::Impl {
 
   bool render(const FrameInput& f, std::vector<uint8_t>& out, std::string* error) {
     if (!ctx->makeCurrent(error)) return false;
+    phases = RenderPhaseTimes{};
+    mark(nullptr);
     SceneBounds bounds;
     float meanRadius = 0.5f;
     if (!classify(f, &bounds, &meanRadius, error)) return false;
@@ -417,6 +431,7 @@ struct Renderer::Impl {
     const size_t groupsBeforeMarkers = groups.size();
     buildContactMarkers(f, meanRadius);
     uploadInstances();
+    mark(&phases.prepare);
 
     const Vec3 focus = bounds.valid ? bounds.center() : Vec3{0.f, 0.f, 0.f};
     const float sceneR = bounds.valid ? std::max(bounds.radius(), 1.f) : 5.f;
@@ -445,6 +460,7 @@ struct Renderer::Impl {
         if (groups[i].castsShadow) drawGroup(groups[i]);
       gl.Disable(GL_POLYGON_OFFSET_FILL);
     }
+    mark(&phases.shadow);
 
     // ---- main pass ----
     const LinearColor horizon{srgbToLinear(0.80f), srgbToLinear(0.85f), srgbToLinear(0.90f)};
@@ -496,6 +512,7 @@ struct Renderer::Impl {
     gl.DepthMask(GL_TRUE);
     gl.DepthFunc(GL_LESS);
     gl.BindVertexArray(0);
+    mark(&phases.scene);
 
     // ---- resolve + read back ----
     GLuint readFbo = msaaFbo;
@@ -505,16 +522,19 @@ struct Renderer::Impl {
       gl.BlitFramebuffer(0, 0, opt.width, opt.height, 0, 0, opt.width, opt.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
       readFbo = resolveFbo;
     }
+    mark(&phases.resolve);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, readFbo);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
     gl.ReadPixels(0, 0, opt.width, opt.height, GL_RGBA, GL_UNSIGNED_BYTE, readback.data());
     if (!checkGl("rendering", error)) return false;
+    mark(&phases.readback);
 
     // GL row 0 is the bottom of the image; callers get the top row first.
     const size_t rowBytes = static_cast<size_t>(opt.width) * 4;
     out.resize(rowBytes * opt.height);
     for (int y = 0; y < opt.height; ++y)
       std::memcpy(out.data() + rowBytes * y, readback.data() + rowBytes * (opt.height - 1 - y), rowBytes);
+    mark(&phases.flip);
 
     if (f.overlay.enabled) {
       if (!text) {
@@ -524,6 +544,7 @@ struct Renderer::Impl {
       Canvas canvas(out.data(), opt.width, opt.height);
       drawOverlay(canvas, *text, f.overlay, f.mode);
     }
+    mark(&phases.overlay);
     return true;
   }
 };
@@ -564,5 +585,6 @@ bool Renderer::renderToPng(const FrameInput& frame, const std::string& path, std
 int Renderer::width() const { return impl_->opt.width; }
 int Renderer::height() const { return impl_->opt.height; }
 int Renderer::msaaSamples() const { return impl_->samples; }
+const RenderPhaseTimes& Renderer::lastPhaseTimes() const { return impl_->phases; }
 
 }  // namespace haif::render
