@@ -61,7 +61,7 @@ struct Renderer::Impl {
   int samples = 1;
   std::unique_ptr<GlContext> ctx;
   GlFunctions gl;
-  ShaderProgram sceneProgram, shadowProgram, skyProgram;
+  ShaderProgram sceneProgram[3], shadowProgram, skyProgram;  // scene: one variant per Surface
   GpuMesh box, sphere, capsule, plane;
   std::unordered_map<uint32_t, GpuMesh> meshes;
   GLuint instanceVbo = 0;
@@ -150,8 +150,11 @@ struct Renderer::Impl {
     }
     ctx = createOsMesaContext(error);
     if (!ctx || !gl.load(*ctx, error)) return false;
-    if (!sceneProgram.load(gl, opt.shaderDir, "scene.vert", "scene.frag", error) ||
-        !shadowProgram.load(gl, opt.shaderDir, "shadow.vert", "shadow.frag", error) ||
+    for (int surface : {kSurfaceBody, kSurfaceGround, kSurfaceBox})
+      if (!sceneProgram[surface].load(gl, opt.shaderDir, "scene.vert", "scene.frag", error,
+                                      "#define SURFACE " + std::to_string(surface) + "\n"))
+        return false;
+    if (!shadowProgram.load(gl, opt.shaderDir, "shadow.vert", "shadow.frag", error) ||
         !skyProgram.load(gl, opt.shaderDir, "sky.vert", "sky.frag", error))
       return false;
 
@@ -470,31 +473,33 @@ struct Renderer::Impl {
     // No colour clear: the sky pass below fills every pixel that geometry left empty, and an
     // MSAA clear is expensive on llvmpipe.
     gl.Clear(GL_DEPTH_BUFFER_BIT);
-    sceneProgram.use();
-    const ShaderProgram& sp = sceneProgram;
-    gl.UniformMatrix4fv(sp.uniform("uViewProj"), 1, GL_FALSE, view.viewProj.m);
-    gl.UniformMatrix4fv(sp.uniform("uLightViewProj"), 1, GL_FALSE, lightVP.m);
-    gl.Uniform1f(sp.uniform("uShadowNormalOffset"), 1.5f * texelWorld);
-    gl.Uniform1i(sp.uniform("uShadowMap"), 0);
-    gl.Uniform1f(sp.uniform("uShadowTexel"), opt.shadowMapSize > 0 ? 1.f / opt.shadowMapSize : 0.f);
-    gl.Uniform1i(sp.uniform("uShadowsOn"), shadows ? 1 : 0);
-    gl.Uniform3f(sp.uniform("uSunDir"), kSunDir.x, kSunDir.y, kSunDir.z);
-    gl.Uniform3f(sp.uniform("uSunColor"), 1.25f, 1.18f, 1.05f);
-    gl.Uniform3f(sp.uniform("uSkyAmbient"), 0.30f, 0.36f, 0.46f);
-    gl.Uniform3f(sp.uniform("uGroundAmbient"), 0.16f, 0.14f, 0.12f);
-    gl.Uniform3f(sp.uniform("uEye"), view.eye.x, view.eye.y, view.eye.z);
-    gl.Uniform3f(sp.uniform("uFogColor"), horizon.r, horizon.g, horizon.b);
-    gl.Uniform1f(sp.uniform("uFogDistance"), (eyeDist + 2.f * sceneR) * 2.5f);
-    gl.Uniform3f(sp.uniform("uGroundColor"), srgbToLinear(0.70f), srgbToLinear(0.70f), srgbToLinear(0.68f));
-    gl.Uniform1f(sp.uniform("uGridSpacing"), 1.f);
-    gl.Uniform1f(sp.uniform("uGridFade"), eyeDist + 3.f * sceneR);
+    for (const ShaderProgram& sp : sceneProgram) {
+      sp.use();
+      gl.UniformMatrix4fv(sp.uniform("uViewProj"), 1, GL_FALSE, view.viewProj.m);
+      gl.UniformMatrix4fv(sp.uniform("uLightViewProj"), 1, GL_FALSE, lightVP.m);
+      gl.Uniform1f(sp.uniform("uShadowNormalOffset"), 1.5f * texelWorld);
+      gl.Uniform1i(sp.uniform("uShadowMap"), 0);
+      gl.Uniform1f(sp.uniform("uShadowTexel"), opt.shadowMapSize > 0 ? 1.f / opt.shadowMapSize : 0.f);
+      gl.Uniform1i(sp.uniform("uShadowsOn"), shadows ? 1 : 0);
+      gl.Uniform3f(sp.uniform("uSunDir"), kSunDir.x, kSunDir.y, kSunDir.z);
+      gl.Uniform3f(sp.uniform("uSunColor"), 1.25f, 1.18f, 1.05f);
+      gl.Uniform3f(sp.uniform("uSkyAmbient"), 0.30f, 0.36f, 0.46f);
+      gl.Uniform3f(sp.uniform("uGroundAmbient"), 0.16f, 0.14f, 0.12f);
+      gl.Uniform3f(sp.uniform("uEye"), view.eye.x, view.eye.y, view.eye.z);
+      gl.Uniform3f(sp.uniform("uFogColor"), horizon.r, horizon.g, horizon.b);
+      gl.Uniform1f(sp.uniform("uFogDistance"), (eyeDist + 2.f * sceneR) * 2.5f);
+      gl.Uniform3f(sp.uniform("uGroundColor"), srgbToLinear(0.70f), srgbToLinear(0.70f), srgbToLinear(0.68f));
+      gl.Uniform1f(sp.uniform("uGridSpacing"), 1.f);
+      gl.Uniform1f(sp.uniform("uGridFade"), eyeDist + 3.f * sceneR);
+    }
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D, shadowTex);
-    const GLint surfaceLoc = sp.uniform("uSurface");
+    int bound = -1;
     for (const DrawGroup& g : groups) {
-      gl.Uniform1i(surfaceLoc, g.surface);
+      if (g.surface != bound) sceneProgram[g.surface].use(), bound = g.surface;
       drawGroup(g);
     }
+    mark(&phases.scene);
 
     // ---- sky where nothing was drawn ----
     gl.Disable(GL_CULL_FACE);
@@ -512,7 +517,7 @@ struct Renderer::Impl {
     gl.DepthMask(GL_TRUE);
     gl.DepthFunc(GL_LESS);
     gl.BindVertexArray(0);
-    mark(&phases.scene);
+    mark(&phases.sky);
 
     // ---- resolve + read back ----
     GLuint readFbo = msaaFbo;

@@ -35,7 +35,8 @@ struct RendererOptions {
 struct RenderPhaseTimes {
   double prepare = 0;   ///< classify, sort and upload instances
   double shadow = 0;    ///< shadow map pass
-  double scene = 0;     ///< main pass incl. sky
+  double scene = 0;     ///< main pass: bodies and ground
+  double sky = 0;       ///< sky behind everything
   double resolve = 0;   ///< MSAA resolve
   double readback = 0;  ///< glReadPixels
   double flip = 0;      ///< bottom-up rows to top-down
