@@ -406,20 +406,34 @@ struct Renderer::Impl {
                              static_cast<GLsizei>(g.count));
   }
 
-  // Orthographic sun view around the casters, snapped to whole texels so shadows do not shimmer
-  // when the framing moves a little between frames.
+  // Orthographic sun view fitted to the casters' box as seen from the sun (tighter than their
+  // bounding sphere, so a smaller map gives the same texel size). Extents are quantised and the
+  // centre snapped to whole texels so shadows do not shimmer when the framing moves a little.
   Mat4 lightMatrix(const SceneBounds& casters, float* texelWorld) const {
-    const Vec3 c = casters.center();
-    float r = std::max(casters.radius(), 0.5f);
-    r = std::pow(2.f, std::ceil(std::log2(r) * 4.f) / 4.f);  // quantised: texel size changes in steps
     const Vec3 f = kSunDir * -1.f;
     const Vec3 s = normalize(cross(f, {0.f, 1.f, 0.f}));
     const Vec3 u = cross(s, f);
-    const float texel = 2.f * r / static_cast<float>(opt.shadowMapSize);
-    const float sx = std::round(dot(c, s) / texel) * texel, sy = std::round(dot(c, u) / texel) * texel;
+    float lo[2] = {1e30f, 1e30f}, hi[2] = {-1e30f, -1e30f};
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 p{(corner & 1) ? casters.max.x : casters.min.x, (corner & 2) ? casters.max.y : casters.min.y,
+                   (corner & 4) ? casters.max.z : casters.min.z};
+      const float ps[2] = {dot(p, s), dot(p, u)};
+      for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], ps[k]), hi[k] = std::max(hi[k], ps[k]);
+    }
+    const auto quantise = [](float half) {  // texel size changes in steps of 2^(1/4)
+      return std::pow(2.f, std::ceil(std::log2(std::max(half, 0.5f)) * 4.f) / 4.f);
+    };
+    const float hw = quantise(0.5f * (hi[0] - lo[0])), hh = quantise(0.5f * (hi[1] - lo[1]));
+    const float texelS = 2.f * hw / static_cast<float>(opt.shadowMapSize);
+    const float texelU = 2.f * hh / static_cast<float>(opt.shadowMapSize);
+    const float sx = std::round(0.5f * (lo[0] + hi[0]) / texelS) * texelS;
+    const float sy = std::round(0.5f * (lo[1] + hi[1]) / texelU) * texelU;
+    const Vec3 c = casters.center();
     const Vec3 center = s * sx + u * sy + f * dot(c, f);
-    *texelWorld = texel;
-    return ortho(-r, r, -r, r, r, 9.f * r) * lookAt(center - f * (3.f * r), center, u);
+    // Depth: the casters' sphere in front, and room behind it for the ground they shade.
+    const float r = std::max(casters.radius(), 0.5f);
+    *texelWorld = std::max(texelS, texelU);
+    return ortho(-hw, hw, -hh, hh, r, 9.f * r) * lookAt(center - f * (3.f * r), center, u);
   }
 
   bool render(const FrameInput& f, std::vector<uint8_t>& out, std::string* error) {

@@ -24,7 +24,7 @@ struct RendererOptions {
   int width = 1280;                        ///< image width in pixels
   int height = 720;                        ///< image height in pixels
   int msaaSamples = 4;                     ///< multisample count (clamped to what GL offers; 1 = off)
-  int shadowMapSize = 2048;                ///< shadow map side in texels; 0 disables shadows
+  int shadowMapSize = 1024;                ///< shadow map side in texels (fitted to the casters); 0 = no shadows
   std::string shaderDir = HAIF_SHADER_DIR; ///< directory holding scene/shadow/sky .vert/.frag
   std::string fontPath = HAIF_FONT_PATH;   ///< TrueType font for the overlay (loaded on first use)
   float groundMinHalfExtent = 50.f;        ///< a static Box with x or z half extent >= this is the ground
