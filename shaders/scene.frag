@@ -1,6 +1,13 @@
 #version 330 core
 // Sun with PCF shadows + hemispheric ambient, an anti-aliased fading grid on the ground, distance
 // fog towards the horizon colour, and sRGB encoding at the end (lighting itself is linear).
+// SURFACE (set by the renderer) picks the variant at compile time: 0 body, 1 ground, 2 box with
+// edge lines. llvmpipe runs both sides of every branch under a mask, so a runtime switch would
+// make every fragment pay for the grid, the edges and the specular at once.
+
+#ifndef SURFACE
+#define SURFACE 0
+#endif
 
 in vec3 vWorldPos;
 in vec3 vNormal;
@@ -9,6 +16,12 @@ in float vEmissive;
 in vec4 vLightPos;
 in vec3 vUnitPos;
 flat in vec3 vScale;
+#if SURFACE == 2
+in vec3 vBase;     // albedo * ambient (per vertex: box faces are flat)
+in vec3 vSunLit;   // albedo * sun * max(n.l, 0)
+in vec3 vSpec;     // sun * specular, zero on faces turned from the sun
+in float vFog;     // fog amount
+#endif
 
 uniform sampler2DShadow uShadowMap;
 uniform float uShadowTexel;     // 1 / shadow map size
@@ -20,7 +33,6 @@ uniform vec3 uGroundAmbient;    // ambient bounced from below
 uniform vec3 uEye;
 uniform vec3 uFogColor;         // linear horizon colour
 uniform float uFogDistance;     // distance where fog reaches ~63 %
-uniform int uSurface;           // 0 body, 1 ground, 2 box (edge lines)
 uniform vec3 uGroundColor;      // linear ground albedo
 uniform float uGridSpacing;     // minor grid spacing in metres
 uniform float uGridFade;        // distance where the grid has faded out
@@ -56,42 +68,56 @@ vec3 encodeSrgb(vec3 c) {
   return clamp(0.585122381 * s1 + 0.783140355 * s2 - 0.368262736 * s3, 0.0, 1.0);
 }
 
+#if SURFACE == 2
+// Boxes: flat faces under a distant sun, so everything but the shadow and the edge lines was lit
+// per vertex. Every rasterised box fragment is shaded with 4x MSAA on llvmpipe (the depth test
+// does not skip hidden ones), so this shader is kept short.
+void main() {
+  // Darken near box edges (in metres) so stacked boxes of similar colour stay readable.
+  vec3 a = abs(vUnitPos);
+  vec3 edgeDist = (1.0 - a) * vScale;
+  // Ignore the axis of the face we are on (its |unit coordinate| is 1).
+  vec3 onFace = step(0.999, a);
+  edgeDist += onFace * 1e3;
+  float e = min(min(edgeDist.x, edgeDist.y), edgeDist.z);
+  float px = fwidth(e);
+  float width = 0.03 * min(min(vScale.x, vScale.y), vScale.z);
+  float edge = 1.0 - smoothstep(width, width + px * 1.5, e);
+  float shadow = shadowFactor();
+  vec3 lit = (1.0 - 0.35 * edge) * (vBase + vSunLit * shadow) + vSpec * shadow;
+  lit = mix(lit, uFogColor, vFog * 0.5);
+  fragColor = vec4(encodeSrgb(lit), 1.0);
+}
+#else
 void main() {
   vec3 n = normalize(vNormal);
   if (!gl_FrontFacing) n = -n;  // open triangle meshes seen from behind
   vec3 albedo = vColor;
   float dist = length(vWorldPos - uEye);
 
-  if (uSurface == 1) {
-    vec2 c = vWorldPos.xz / uGridSpacing;
-    float fade = 1.0 - smoothstep(uGridFade * 0.35, uGridFade, dist);
-    albedo = uGroundColor * (1.0 - gridLines(c) * fade);
-  } else if (uSurface == 2) {
-    // Darken near box edges (in metres) so stacked boxes of similar colour stay readable.
-    vec3 a = abs(vUnitPos);
-    vec3 edgeDist = (1.0 - a) * vScale;
-    // Ignore the axis of the face we are on (its |unit coordinate| is 1).
-    vec3 onFace = step(0.999, a);
-    edgeDist += onFace * 1e3;
-    float e = min(min(edgeDist.x, edgeDist.y), edgeDist.z);
-    float px = fwidth(e);
-    float width = 0.03 * min(min(vScale.x, vScale.y), vScale.z);
-    float edge = 1.0 - smoothstep(width, width + px * 1.5, e);
-    albedo *= 1.0 - 0.35 * edge;
-  }
+#if SURFACE == 1
+  vec2 c = vWorldPos.xz / uGridSpacing;
+  float fade = 1.0 - smoothstep(uGridFade * 0.35, uGridFade, dist);
+  albedo = uGroundColor * (1.0 - gridLines(c) * fade);
+#endif
 
   float ndl = max(dot(n, uSunDir), 0.0);
   float shadow = ndl > 0.0 ? shadowFactor() : 0.0;
   vec3 ambient = mix(uGroundAmbient, uSkyAmbient, n.y * 0.5 + 0.5);
+#if SURFACE == 1
+  vec3 lit = albedo * (ambient + uSunColor * ndl * shadow);  // the ground is matte
+#else
   vec3 h = normalize(uSunDir + normalize(uEye - vWorldPos));
   float nh = max(dot(n, h), 0.0);
   float nh8 = nh * nh; nh8 *= nh8; nh8 *= nh8;  // (n.h)^48 by squaring, cheaper than pow()
-  float spec = nh8 * nh8 * nh8 * nh8 * nh8 * nh8 * 0.12 * (uSurface == 1 ? 0.0 : 1.0);
+  float spec = nh8 * nh8 * nh8 * nh8 * nh8 * nh8 * 0.12;
   vec3 lit = albedo * (ambient + uSunColor * ndl * shadow) + uSunColor * spec * shadow;
   lit = mix(lit, vColor, vEmissive);
+#endif
 
   // Gaussian fog: the scene itself stays clear, the far ground melts into the horizon.
   float fog = 1.0 - exp(-(dist * dist) / (uFogDistance * uFogDistance));
-  lit = mix(lit, uFogColor, fog * (uSurface == 1 ? 1.0 : 0.5));
+  lit = mix(lit, uFogColor, fog * (SURFACE == 1 ? 1.0 : 0.5));
   fragColor = vec4(encodeSrgb(lit), 1.0);
 }
+#endif

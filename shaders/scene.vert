@@ -23,6 +23,24 @@ out vec4 vLightPos;
 out vec3 vUnitPos;       // position on the unit shape, for box edge lines
 flat out vec3 vScale;
 
+#ifndef SURFACE
+#define SURFACE 0
+#endif
+#if SURFACE == 2
+// Boxes are lit per vertex (flat faces, distant sun: exact but for the tiny change of the view
+// direction across a face); scene.frag adds the shadow and the edge lines.
+uniform vec3 uSunDir;
+uniform vec3 uSunColor;
+uniform vec3 uSkyAmbient;
+uniform vec3 uGroundAmbient;
+uniform vec3 uEye;
+uniform float uFogDistance;
+out vec3 vBase;
+out vec3 vSunLit;
+out vec3 vSpec;
+out float vFog;
+#endif
+
 vec3 rotate(vec4 q, vec3 v) {
   vec3 t = 2.0 * cross(q.xyz, v);
   return v + q.w * t + cross(q.xyz, t);
@@ -41,4 +59,18 @@ void main() {
   vUnitPos = aPos;
   vScale = iScale;
   gl_Position = uViewProj * vec4(world, 1.0);
+#if SURFACE == 2
+  float ndl = max(dot(n, uSunDir), 0.0);
+  vec3 ambient = mix(uGroundAmbient, uSkyAmbient, n.y * 0.5 + 0.5);
+  vec3 toEye = uEye - world;
+  vec3 h = normalize(uSunDir + normalize(toEye));
+  float nh = max(dot(n, h), 0.0);
+  float nh8 = nh * nh; nh8 *= nh8; nh8 *= nh8;  // (n.h)^48 by squaring, as in scene.frag
+  float spec = ndl > 0.0 ? nh8 * nh8 * nh8 * nh8 * nh8 * nh8 * 0.12 : 0.0;
+  vBase = iColor.rgb * ambient;
+  vSunLit = iColor.rgb * uSunColor * ndl;
+  vSpec = uSunColor * spec;
+  float d2 = dot(toEye, toEye);
+  vFog = 1.0 - exp(-d2 / (uFogDistance * uFogDistance));
+#endif
 }

@@ -10,8 +10,8 @@
 #include "tools/video.h"
 
 #ifdef HAIF_HAVE_RENDER
+#include "render/async_png_writer.h"
 #include "render/overlay.h"
-#include "render/png_io.h"
 #include "render/run_charts.h"
 #endif
 
@@ -136,6 +136,9 @@ int commandRun(int argc, char** argv) {
     std::fprintf(stderr, "haif run: ffmpeg not found on PATH (apt-get install ffmpeg): no %s; the frames are in %s\n",
                  video.c_str(), framesDir.c_str());
   if (encoding && !encoder.open(video, width, height, 60.0 / frameEvery, error)) return fail("haif run: " + error);
+  // PNG encoding runs on one writer thread, overlapping the next steps and frames.
+  std::unique_ptr<render::AsyncPngWriter> pngWriter;
+  if (render) pngWriter = std::make_unique<render::AsyncPngWriter>();
   std::vector<uint8_t> pixels;
   int frameIndex = 0;
   auto afterStep = [&](const World& w) {
@@ -154,9 +157,8 @@ int commandRun(int argc, char** argv) {
     char name[64];
     std::snprintf(name, sizeof name, "/frame_%05d.png", frameIndex++);
     std::string why;
-    if (!renderer->render(frame, pixels, &why) ||
-        !render::writePng(framesDir + name, width, height, pixels.data(), &why) ||
-        (encoding && !encoder.write(pixels.data(), why))) {
+    if (!renderer->render(frame, pixels, &why) || (encoding && !encoder.write(pixels.data(), why)) ||
+        !pngWriter->submit(framesDir + name, width, height, pixels, &why)) {
       error = "haif run: frame " + std::to_string(frameIndex - 1) + ": " + why;
       renderFailed = true;
     }
@@ -169,6 +171,9 @@ int commandRun(int argc, char** argv) {
   const bool finite = runSteps(sim, frames, stats, metrics, afterStep);
   progress.finish();
   if (renderFailed) return fail(error);
+#ifdef HAIF_HAVE_RENDER
+  if (pngWriter && !pngWriter->finish(&error)) return fail("haif run: frames: " + error);
+#endif
   info.stateHash = world.stateHash();
   if (!renderMs.empty()) info.renderMsPerFrameMedian = quantile(renderMs, 0.5);
 

@@ -1,6 +1,7 @@
 #include "render/renderer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -60,7 +61,7 @@ struct Renderer::Impl {
   int samples = 1;
   std::unique_ptr<GlContext> ctx;
   GlFunctions gl;
-  ShaderProgram sceneProgram, shadowProgram, skyProgram;
+  ShaderProgram sceneProgram[3], shadowProgram, skyProgram;  // scene: one variant per Surface
   GpuMesh box, sphere, capsule, plane;
   std::unordered_map<uint32_t, GpuMesh> meshes;
   GLuint instanceVbo = 0;
@@ -74,6 +75,17 @@ struct Renderer::Impl {
   std::vector<DrawGroup> groups;
   std::vector<uint8_t> readback;
   std::unique_ptr<TextRenderer> text;  // created on the first frame with the overlay enabled
+  RenderPhaseTimes phases;
+  std::chrono::steady_clock::time_point phaseStart;
+
+  // With timePhases: finishes the GL work queued so far and books the time since the last mark.
+  void mark(double* phase) {
+    if (!opt.timePhases) return;
+    gl.Finish();
+    const auto now = std::chrono::steady_clock::now();
+    if (phase) *phase = std::chrono::duration<double, std::milli>(now - phaseStart).count();
+    phaseStart = now;
+  }
 
   ~Impl() {
     if (!ctx) return;
@@ -138,8 +150,11 @@ struct Renderer::Impl {
     }
     ctx = createOsMesaContext(error);
     if (!ctx || !gl.load(*ctx, error)) return false;
-    if (!sceneProgram.load(gl, opt.shaderDir, "scene.vert", "scene.frag", error) ||
-        !shadowProgram.load(gl, opt.shaderDir, "shadow.vert", "shadow.frag", error) ||
+    for (int surface : {kSurfaceBody, kSurfaceGround, kSurfaceBox})
+      if (!sceneProgram[surface].load(gl, opt.shaderDir, "scene.vert", "scene.frag", error,
+                                      "#define SURFACE " + std::to_string(surface) + "\n"))
+        return false;
+    if (!shadowProgram.load(gl, opt.shaderDir, "shadow.vert", "shadow.frag", error) ||
         !skyProgram.load(gl, opt.shaderDir, "sky.vert", "sky.frag", error))
       return false;
 
@@ -391,24 +406,40 @@ struct Renderer::Impl {
                              static_cast<GLsizei>(g.count));
   }
 
-  // Orthographic sun view around the casters, snapped to whole texels so shadows do not shimmer
-  // when the framing moves a little between frames.
+  // Orthographic sun view fitted to the casters' box as seen from the sun (tighter than their
+  // bounding sphere, so a smaller map gives the same texel size). Extents are quantised and the
+  // centre snapped to whole texels so shadows do not shimmer when the framing moves a little.
   Mat4 lightMatrix(const SceneBounds& casters, float* texelWorld) const {
-    const Vec3 c = casters.center();
-    float r = std::max(casters.radius(), 0.5f);
-    r = std::pow(2.f, std::ceil(std::log2(r) * 4.f) / 4.f);  // quantised: texel size changes in steps
     const Vec3 f = kSunDir * -1.f;
     const Vec3 s = normalize(cross(f, {0.f, 1.f, 0.f}));
     const Vec3 u = cross(s, f);
-    const float texel = 2.f * r / static_cast<float>(opt.shadowMapSize);
-    const float sx = std::round(dot(c, s) / texel) * texel, sy = std::round(dot(c, u) / texel) * texel;
+    float lo[2] = {1e30f, 1e30f}, hi[2] = {-1e30f, -1e30f};
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 p{(corner & 1) ? casters.max.x : casters.min.x, (corner & 2) ? casters.max.y : casters.min.y,
+                   (corner & 4) ? casters.max.z : casters.min.z};
+      const float ps[2] = {dot(p, s), dot(p, u)};
+      for (int k = 0; k < 2; ++k) lo[k] = std::min(lo[k], ps[k]), hi[k] = std::max(hi[k], ps[k]);
+    }
+    const auto quantise = [](float half) {  // texel size changes in steps of 2^(1/4)
+      return std::pow(2.f, std::ceil(std::log2(std::max(half, 0.5f)) * 4.f) / 4.f);
+    };
+    const float hw = quantise(0.5f * (hi[0] - lo[0])), hh = quantise(0.5f * (hi[1] - lo[1]));
+    const float texelS = 2.f * hw / static_cast<float>(opt.shadowMapSize);
+    const float texelU = 2.f * hh / static_cast<float>(opt.shadowMapSize);
+    const float sx = std::round(0.5f * (lo[0] + hi[0]) / texelS) * texelS;
+    const float sy = std::round(0.5f * (lo[1] + hi[1]) / texelU) * texelU;
+    const Vec3 c = casters.center();
     const Vec3 center = s * sx + u * sy + f * dot(c, f);
-    *texelWorld = texel;
-    return ortho(-r, r, -r, r, r, 9.f * r) * lookAt(center - f * (3.f * r), center, u);
+    // Depth: the casters' sphere in front, and room behind it for the ground they shade.
+    const float r = std::max(casters.radius(), 0.5f);
+    *texelWorld = std::max(texelS, texelU);
+    return ortho(-hw, hw, -hh, hh, r, 9.f * r) * lookAt(center - f * (3.f * r), center, u);
   }
 
   bool render(const FrameInput& f, std::vector<uint8_t>& out, std::string* error) {
     if (!ctx->makeCurrent(error)) return false;
+    phases = RenderPhaseTimes{};
+    mark(nullptr);
     SceneBounds bounds;
     float meanRadius = 0.5f;
     if (!classify(f, &bounds, &meanRadius, error)) return false;
@@ -417,6 +448,7 @@ struct Renderer::Impl {
     const size_t groupsBeforeMarkers = groups.size();
     buildContactMarkers(f, meanRadius);
     uploadInstances();
+    mark(&phases.prepare);
 
     const Vec3 focus = bounds.valid ? bounds.center() : Vec3{0.f, 0.f, 0.f};
     const float sceneR = bounds.valid ? std::max(bounds.radius(), 1.f) : 5.f;
@@ -445,6 +477,7 @@ struct Renderer::Impl {
         if (groups[i].castsShadow) drawGroup(groups[i]);
       gl.Disable(GL_POLYGON_OFFSET_FILL);
     }
+    mark(&phases.shadow);
 
     // ---- main pass ----
     const LinearColor horizon{srgbToLinear(0.80f), srgbToLinear(0.85f), srgbToLinear(0.90f)};
@@ -454,31 +487,33 @@ struct Renderer::Impl {
     // No colour clear: the sky pass below fills every pixel that geometry left empty, and an
     // MSAA clear is expensive on llvmpipe.
     gl.Clear(GL_DEPTH_BUFFER_BIT);
-    sceneProgram.use();
-    const ShaderProgram& sp = sceneProgram;
-    gl.UniformMatrix4fv(sp.uniform("uViewProj"), 1, GL_FALSE, view.viewProj.m);
-    gl.UniformMatrix4fv(sp.uniform("uLightViewProj"), 1, GL_FALSE, lightVP.m);
-    gl.Uniform1f(sp.uniform("uShadowNormalOffset"), 1.5f * texelWorld);
-    gl.Uniform1i(sp.uniform("uShadowMap"), 0);
-    gl.Uniform1f(sp.uniform("uShadowTexel"), opt.shadowMapSize > 0 ? 1.f / opt.shadowMapSize : 0.f);
-    gl.Uniform1i(sp.uniform("uShadowsOn"), shadows ? 1 : 0);
-    gl.Uniform3f(sp.uniform("uSunDir"), kSunDir.x, kSunDir.y, kSunDir.z);
-    gl.Uniform3f(sp.uniform("uSunColor"), 1.25f, 1.18f, 1.05f);
-    gl.Uniform3f(sp.uniform("uSkyAmbient"), 0.30f, 0.36f, 0.46f);
-    gl.Uniform3f(sp.uniform("uGroundAmbient"), 0.16f, 0.14f, 0.12f);
-    gl.Uniform3f(sp.uniform("uEye"), view.eye.x, view.eye.y, view.eye.z);
-    gl.Uniform3f(sp.uniform("uFogColor"), horizon.r, horizon.g, horizon.b);
-    gl.Uniform1f(sp.uniform("uFogDistance"), (eyeDist + 2.f * sceneR) * 2.5f);
-    gl.Uniform3f(sp.uniform("uGroundColor"), srgbToLinear(0.70f), srgbToLinear(0.70f), srgbToLinear(0.68f));
-    gl.Uniform1f(sp.uniform("uGridSpacing"), 1.f);
-    gl.Uniform1f(sp.uniform("uGridFade"), eyeDist + 3.f * sceneR);
+    for (const ShaderProgram& sp : sceneProgram) {
+      sp.use();
+      gl.UniformMatrix4fv(sp.uniform("uViewProj"), 1, GL_FALSE, view.viewProj.m);
+      gl.UniformMatrix4fv(sp.uniform("uLightViewProj"), 1, GL_FALSE, lightVP.m);
+      gl.Uniform1f(sp.uniform("uShadowNormalOffset"), 1.5f * texelWorld);
+      gl.Uniform1i(sp.uniform("uShadowMap"), 0);
+      gl.Uniform1f(sp.uniform("uShadowTexel"), opt.shadowMapSize > 0 ? 1.f / opt.shadowMapSize : 0.f);
+      gl.Uniform1i(sp.uniform("uShadowsOn"), shadows ? 1 : 0);
+      gl.Uniform3f(sp.uniform("uSunDir"), kSunDir.x, kSunDir.y, kSunDir.z);
+      gl.Uniform3f(sp.uniform("uSunColor"), 1.25f, 1.18f, 1.05f);
+      gl.Uniform3f(sp.uniform("uSkyAmbient"), 0.30f, 0.36f, 0.46f);
+      gl.Uniform3f(sp.uniform("uGroundAmbient"), 0.16f, 0.14f, 0.12f);
+      gl.Uniform3f(sp.uniform("uEye"), view.eye.x, view.eye.y, view.eye.z);
+      gl.Uniform3f(sp.uniform("uFogColor"), horizon.r, horizon.g, horizon.b);
+      gl.Uniform1f(sp.uniform("uFogDistance"), (eyeDist + 2.f * sceneR) * 2.5f);
+      gl.Uniform3f(sp.uniform("uGroundColor"), srgbToLinear(0.70f), srgbToLinear(0.70f), srgbToLinear(0.68f));
+      gl.Uniform1f(sp.uniform("uGridSpacing"), 1.f);
+      gl.Uniform1f(sp.uniform("uGridFade"), eyeDist + 3.f * sceneR);
+    }
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D, shadowTex);
-    const GLint surfaceLoc = sp.uniform("uSurface");
+    int bound = -1;
     for (const DrawGroup& g : groups) {
-      gl.Uniform1i(surfaceLoc, g.surface);
+      if (g.surface != bound) sceneProgram[g.surface].use(), bound = g.surface;
       drawGroup(g);
     }
+    mark(&phases.scene);
 
     // ---- sky where nothing was drawn ----
     gl.Disable(GL_CULL_FACE);
@@ -496,6 +531,7 @@ struct Renderer::Impl {
     gl.DepthMask(GL_TRUE);
     gl.DepthFunc(GL_LESS);
     gl.BindVertexArray(0);
+    mark(&phases.sky);
 
     // ---- resolve + read back ----
     GLuint readFbo = msaaFbo;
@@ -505,16 +541,19 @@ struct Renderer::Impl {
       gl.BlitFramebuffer(0, 0, opt.width, opt.height, 0, 0, opt.width, opt.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);
       readFbo = resolveFbo;
     }
+    mark(&phases.resolve);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, readFbo);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
     gl.ReadPixels(0, 0, opt.width, opt.height, GL_RGBA, GL_UNSIGNED_BYTE, readback.data());
     if (!checkGl("rendering", error)) return false;
+    mark(&phases.readback);
 
     // GL row 0 is the bottom of the image; callers get the top row first.
     const size_t rowBytes = static_cast<size_t>(opt.width) * 4;
     out.resize(rowBytes * opt.height);
     for (int y = 0; y < opt.height; ++y)
       std::memcpy(out.data() + rowBytes * y, readback.data() + rowBytes * (opt.height - 1 - y), rowBytes);
+    mark(&phases.flip);
 
     if (f.overlay.enabled) {
       if (!text) {
@@ -524,6 +563,7 @@ struct Renderer::Impl {
       Canvas canvas(out.data(), opt.width, opt.height);
       drawOverlay(canvas, *text, f.overlay, f.mode);
     }
+    mark(&phases.overlay);
     return true;
   }
 };
@@ -564,5 +604,6 @@ bool Renderer::renderToPng(const FrameInput& frame, const std::string& path, std
 int Renderer::width() const { return impl_->opt.width; }
 int Renderer::height() const { return impl_->opt.height; }
 int Renderer::msaaSamples() const { return impl_->samples; }
+const RenderPhaseTimes& Renderer::lastPhaseTimes() const { return impl_->phases; }
 
 }  // namespace haif::render

@@ -24,10 +24,23 @@ struct RendererOptions {
   int width = 1280;                        ///< image width in pixels
   int height = 720;                        ///< image height in pixels
   int msaaSamples = 4;                     ///< multisample count (clamped to what GL offers; 1 = off)
-  int shadowMapSize = 2048;                ///< shadow map side in texels; 0 disables shadows
+  int shadowMapSize = 1024;                ///< shadow map side in texels (fitted to the casters); 0 = no shadows
   std::string shaderDir = HAIF_SHADER_DIR; ///< directory holding scene/shadow/sky .vert/.frag
   std::string fontPath = HAIF_FONT_PATH;   ///< TrueType font for the overlay (loaded on first use)
   float groundMinHalfExtent = 50.f;        ///< a static Box with x or z half extent >= this is the ground
+  bool timePhases = false;  ///< measure each phase of render() (adds a glFinish per phase: for profiling only)
+};
+
+/// Wall time of each phase of the last render() in ms; all zero unless RendererOptions::timePhases.
+struct RenderPhaseTimes {
+  double prepare = 0;   ///< classify, sort and upload instances
+  double shadow = 0;    ///< shadow map pass
+  double scene = 0;     ///< main pass: bodies and ground
+  double sky = 0;       ///< sky behind everything
+  double resolve = 0;   ///< MSAA resolve
+  double readback = 0;  ///< glReadPixels
+  double flip = 0;      ///< bottom-up rows to top-down
+  double overlay = 0;   ///< text and charts
 };
 
 class Renderer {
@@ -56,6 +69,8 @@ class Renderer {
   int width() const;   ///< image width in pixels
   int height() const;  ///< image height in pixels
   int msaaSamples() const;  ///< samples actually used
+  /// Phase timings of the last render() (zeros unless options.timePhases).
+  const RenderPhaseTimes& lastPhaseTimes() const;
 
  private:
   struct Impl;

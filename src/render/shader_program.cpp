@@ -24,9 +24,23 @@ std::string joinPath(const std::string& dir, const std::string& file) {
   return dir.back() == '/' ? dir + file : dir + "/" + file;
 }
 
-GLuint compile(const GlFunctions& gl, GLenum type, const std::string& path, std::string* error) {
+// Puts `defines` after the #version line (GLSL wants #version first).
+void insertDefines(std::string* source, const std::string& defines) {
+  if (defines.empty()) return;
+  size_t at = 0;
+  if (source->compare(0, 8, "#version") == 0) {
+    const size_t eol = source->find('\n');
+    at = eol == std::string::npos ? source->size() : eol + 1;
+    if (eol == std::string::npos) source->push_back('\n'), ++at;
+  }
+  source->insert(at, defines + "#line " + std::to_string(at ? 2 : 1) + "\n");  // logs keep the file's line numbers
+}
+
+GLuint compile(const GlFunctions& gl, GLenum type, const std::string& path, const std::string& defines,
+               std::string* error) {
   std::string source;
   if (!readFile(path, &source, error)) return 0;
+  insertDefines(&source, defines);
   const GLuint shader = gl.CreateShader(type);
   const char* src = source.c_str();
   gl.ShaderSource(shader, 1, &src, nullptr);
@@ -52,12 +66,12 @@ ShaderProgram::~ShaderProgram() {
 }
 
 bool ShaderProgram::load(const GlFunctions& gl, const std::string& dir, const std::string& vertFile,
-                         const std::string& fragFile, std::string* error) {
+                         const std::string& fragFile, std::string* error, const std::string& defines) {
   gl_ = &gl;
   const std::string vertPath = joinPath(dir, vertFile), fragPath = joinPath(dir, fragFile);
-  const GLuint vs = compile(gl, GL_VERTEX_SHADER, vertPath, error);
+  const GLuint vs = compile(gl, GL_VERTEX_SHADER, vertPath, defines, error);
   if (!vs) return false;
-  const GLuint fs = compile(gl, GL_FRAGMENT_SHADER, fragPath, error);
+  const GLuint fs = compile(gl, GL_FRAGMENT_SHADER, fragPath, defines, error);
   if (!fs) {
     gl.DeleteShader(vs);
     return false;

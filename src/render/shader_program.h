@@ -15,10 +15,11 @@ class ShaderProgram {
   ShaderProgram(const ShaderProgram&) = delete;
   ShaderProgram& operator=(const ShaderProgram&) = delete;
 
-  /// Reads dir/vertFile and dir/fragFile, compiles and links them. On failure returns false,
-  /// leaves no GL objects behind and sets *error.
+  /// Reads dir/vertFile and dir/fragFile, compiles and links them. `defines` (e.g. "#define X 1\n")
+  /// goes right after each file's #version line, so one file can yield specialised variants.
+  /// On failure returns false, leaves no GL objects behind and sets *error.
   bool load(const GlFunctions& gl, const std::string& dir, const std::string& vertFile,
-            const std::string& fragFile, std::string* error);
+            const std::string& fragFile, std::string* error, const std::string& defines = "");
 
   /// Binds the program.
   void use() const { gl_->UseProgram(program_); }

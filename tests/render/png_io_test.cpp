@@ -34,6 +34,29 @@ TEST(PngIo, RoundTripKeepsEveryPixelAndTopRowFirst) {
   EXPECT_EQ(files, 1);
 }
 
+// Opaque images take the RGB path (alpha dropped on write); reading must give alpha 255 back and
+// every colour byte unchanged, including at a full frame size.
+TEST(PngIo, OpaqueFrameRoundTripsExactly) {
+  const int w = 1280, h = 720;
+  std::vector<uint8_t> rgba(static_cast<size_t>(w) * h * 4);
+  uint32_t seed = 12345;
+  for (size_t i = 0; i < rgba.size(); ++i) {
+    seed = seed * 1664525u + 1013904223u;
+    rgba[i] = (i % 4 == 3) ? 255 : static_cast<uint8_t>((i % 7 == 0) ? seed >> 24 : (i / 4) % 251);
+  }
+  const std::string path = test::tempDir() + "/opaque.png";
+  std::string error;
+  ASSERT_TRUE(writePng(path, w, h, rgba.data(), &error)) << error;
+  int rw = 0, rh = 0;
+  std::vector<uint8_t> back;
+  ASSERT_TRUE(readPng(path, &rw, &rh, &back, &error)) << error;
+  ASSERT_EQ(rw, w);
+  ASSERT_EQ(rh, h);
+  EXPECT_TRUE(back == rgba);
+  // Stored as RGB: well under the 3.7 MB of raw RGBA even with the noise in it.
+  EXPECT_LT(std::filesystem::file_size(path), rgba.size() * 3 / 4 + 4096);
+}
+
 TEST(PngIo, UnwritableDirectoryFailsWithPathInError) {
   std::vector<uint8_t> rgba(4 * 4 * 4, 128);
   std::string error;

@@ -251,9 +251,9 @@ TEST(Renderer, UnregisteredMeshIsAnErrorAndRegisteredMeshDraws) {
 }
 
 // Prints (does not assert) the frame time of the performance target: 2000 boxes, 1280x720,
-// shadows 2048 and 4x MSAA, with and without the overlay. Timings on a shared machine are noisy.
+// shadows (1024 map) and 4x MSAA, with and without the overlay. Timings on a shared machine are noisy.
 TEST(RenderBenchmark, Stacks2000FrameTimePrinted) {
-  RendererOptions o;  // defaults: 1280x720, 4x MSAA, 2048 shadow map
+  RendererOptions o;  // defaults: 1280x720, 4x MSAA, 1024 shadow map
   std::string error;
   auto r = Renderer::create(o, &error);
   ASSERT_TRUE(r) << error;
