@@ -143,8 +143,9 @@ void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n) {
   }
 }
 
-float solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias) {
+SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias) {
   float residual = 0.0f;
+  double change = 0.0;
   for (size_t k = 0; k < n; ++k) {
     ContactConstraint& c = cs[k];
     const int m = c.count;
@@ -209,14 +210,17 @@ float solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float o
     }
     const int passes = m > 1 ? kManifoldNormalPasses : 1;
     for (int pass = 0; pass < passes; ++pass) {
+      bool moved = false;
       for (int i = 0; i < m; ++i) {
         ContactConstraint::Point& p = c.points[i];
         const float old = p.normalImpulse;
         p.normalImpulse = std::max(0.0f, old - omega * p.normalMass * (vn[i] + bias[i]));
         const float applied = p.normalImpulse - old;
         if (applied == 0.0f) continue;
+        moved = true;
         for (int j = 0; j < m; ++j) vn[j] += c.normalCoupling[j][i] * applied;
       }
+      if (!moved) break;  // a pass that changed nothing ends the block solve (separated contacts: at once)
     }
     for (int i = 0; i < m; ++i) {
       const ContactConstraint::Point& p = c.points[i];
@@ -228,6 +232,9 @@ float solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float o
       wb += applied * p.iBn;
       if (p.normalMass > 0.0f) residual = std::max(residual, std::fabs(applied) / p.normalMass);
     }
+    float sq = 0.0f;
+    for (int r = 0; r < ContactConstraint::kRows; ++r) sq += c.delta[r] * c.delta[r];
+    change += sq;
     if (c.dynA) {
       bodies.v[c.a] = va;
       bodies.w[c.a] = wa;
@@ -237,14 +244,7 @@ float solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float o
       bodies.w[c.b] = wb;
     }
   }
-  return residual;
-}
-
-double sweepChange(const ContactConstraint* cs, size_t n) {
-  double sum = 0.0;
-  for (size_t k = 0; k < n; ++k)
-    for (int r = 0; r < ContactConstraint::kRows; ++r) sum += double(cs[k].delta[r]) * double(cs[k].delta[r]);
-  return sum;
+  return {residual, change};
 }
 
 void startDirection(ContactConstraint* cs, size_t n) {

@@ -84,13 +84,19 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
 /// Applies the accumulated (warm-start) impulses of the constraints to the body velocities.
 void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n);
 
-/// One PGS sweep over the constraints; returns the largest velocity correction made (m/s),
-/// the residual that early stopping compares against a tolerance. `useBias` false: the relax
-/// sweep, run after positions were integrated, which removes the position-correction velocity.
-float solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias);
+/// What one sweep did.
+struct SweepResult {
+  float residual = 0.0f;  ///< largest velocity correction of a normal row (m/s): what early stopping tests
+  double change = 0.0;    ///< Σ over the rows of (impulse change)²: what the accelerated solve steps by
+  void merge(const SweepResult& o) {
+    residual = residual > o.residual ? residual : o.residual;
+    change += o.change;
+  }
+};
 
-/// Σ over the rows of delta²: the squared norm of the last sweep's impulse change.
-double sweepChange(const ContactConstraint* cs, size_t n);
+/// One PGS sweep over the constraints. `useBias` false: the relax sweep, run after positions were
+/// integrated, which removes the position-correction velocity.
+SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias);
 
 /// Nonsmooth nonlinear conjugate gradient on top of the sweeps (after Silcowitz, Niebe and Erleben
 /// 2010). A sweep's impulse change is the negative gradient of the projected problem; momentum

@@ -358,16 +358,17 @@ void World::forEachIsland(F&& f) {
   });
 }
 
-// Runs f(begin, end) over island k's contact range and returns the largest residual f reports. A
-// split island runs its strips in two parallel phases, even strips then odd ones, then its tail
-// (see island_split.h); any other island is one range on the calling thread.
+// Runs f(begin, end) over island k's contact range and merges the SweepResults f returns. A split
+// island runs its strips in two parallel phases, even strips then odd ones, then its tail (see
+// island_split.h), and merges in strip order, so sums do not depend on the thread count. Any other
+// island is one range on the calling thread.
 template <class F>
-float World::forEachStrip(uint32_t k, F&& f) {
+SweepResult World::forEachStrip(uint32_t k, F&& f) {
   const int32_t li = layoutOf_[k];
   if (li < 0) return f(0u, islands_.islands[k].contactCount);
   const StripLayout& layout = layouts_[li];
-  float* res = stripResidual_.data() + size_t(li) * (kMaxStrips + 1);
-  float residual = 0.0f;
+  SweepResult* res = stripResult_.data() + size_t(li) * (kMaxStrips + 1);
+  SweepResult total;
   for (uint32_t phase = 0; phase < 2; ++phase) {
     const uint32_t tasks = (layout.strips + 1 - phase) / 2;
     parallelFor(tasks, 1, [&](uint32_t begin, uint32_t end) {
@@ -376,28 +377,29 @@ float World::forEachStrip(uint32_t k, F&& f) {
         res[s] = f(layout.start[s], layout.start[s + 1]);
       }
     });
-    for (uint32_t t = 0; t < tasks; ++t) residual = std::max(residual, res[2 * t + phase]);
+    for (uint32_t t = 0; t < tasks; ++t) total.merge(res[2 * t + phase]);
   }
   const uint32_t tail = layout.strips;
-  return std::max(residual, f(layout.start[tail], layout.start[tail + 1]));
+  total.merge(f(layout.start[tail], layout.start[tail + 1]));
+  return total;
 }
 
 // One sweep over island k: its contacts, then its joints. Joints after contacts: the joint tree,
 // solved exactly, ends each sweep intact. The other way round crates landing on a rope bridge left
 // their joints open, and Baumgarte turned that into a bounce.
-float World::sweepIsland(uint32_t k, bool useBias) {
+SweepResult World::sweepIsland(uint32_t k, bool useBias) {
   const Island& isl = islands_.islands[k];
   ContactConstraint* cs = constraints_.data() + isl.firstContact;
   const float omega = settings_.omega;
-  float residual = forEachStrip(k, [&](uint32_t b, uint32_t e) {
+  SweepResult r = forEachStrip(k, [&](uint32_t b, uint32_t e) {
     return solveIteration(bodies_, cs + b, e - b, omega, useBias);
   });
   if (isl.jointCount > 0) {
     JointTree* tree = settings_.joints.treeSolve ? &jointTrees_[k] : nullptr;
-    residual = std::max(residual, solveJointIteration(bodies_, jointConstraints_.data() + isl.firstJoint,
-                                                      isl.jointCount, tree, omega, useBias));
+    r.residual = std::max(r.residual, solveJointIteration(bodies_, jointConstraints_.data() + isl.firstJoint,
+                                                          isl.jointCount, tree, omega, useBias));
   }
-  return residual;
+  return r;
 }
 
 // Giant islands without joints are cut into strips for parallel sweeps. The island's largest
@@ -419,7 +421,7 @@ void World::splitGiantIslands() {
       largest = std::max(largest, isl.rows);
     }
   }
-  stripResidual_.resize(layouts_.size() * (kMaxStrips + 1));
+  stripResult_.resize(layouts_.size() * (kMaxStrips + 1));
   islands_.largestRows = largest;
 }
 
@@ -438,7 +440,7 @@ void World::solveIslands(int iterations) {
     else prepare(0, isl.contactCount);
     if (sp.warmStart) forEachStrip(k, [&](uint32_t b, uint32_t e) {
       warmStart(bodies_, cs + b, e - b);
-      return 0.0f;
+      return SweepResult{};
     });
     if (isl.jointCount > 0) prepareJoints(k, sp);
     // Momentum on the contacts of joint-free islands; a joint tree is solved exactly every sweep.
@@ -448,19 +450,20 @@ void World::solveIslands(int iterations) {
     int it = 0;
     float residual = 0.0f;
     while (it < iterations) {
-      residual = sweepIsland(k, true);
+      const SweepResult sweep = sweepIsland(k, true);
+      residual = sweep.residual;
       ++it;
       // Converged islands stop: precision nobody can see is not paid for.
       if (tol > 0.0f && it >= iMin && residual < tol) break;
       if (!cg || it == iterations) continue;  // the main sweeps end on a sweep, not a momentum step
-      const double change = sweepChange(cs, n);
+      const double change = sweep.change;
       if (it == 1 || lastChange <= 0.0 || change > lastChange) {
         startDirection(cs, n);  // first direction, or a restart: the last step overshot
       } else {
         const float beta = float(change / lastChange);
         forEachStrip(k, [&](uint32_t b, uint32_t e) {
           accelerate(bodies_, cs + b, e - b, beta);
-          return 0.0f;
+          return SweepResult{};
         });
       }
       lastChange = change;
@@ -496,7 +499,7 @@ void World::shareSpareIterations(int iterations) {
     int it = 0;
     float residual = islandResidual_[k];
     while (it < islandExtra_[k] && residual >= tol) {
-      residual = sweepIsland(k, true);
+      residual = sweepIsland(k, true).residual;
       ++it;
     }
     islandIterations_[k] += it;

@@ -123,8 +123,8 @@ class World {
   void solve(int iterations);
   void solveIslands(int iterations);
   void splitGiantIslands();
-  template <class F> float forEachStrip(uint32_t island, F&& f);
-  float sweepIsland(uint32_t island, bool useBias);
+  template <class F> SweepResult forEachStrip(uint32_t island, F&& f);
+  SweepResult sweepIsland(uint32_t island, bool useBias);
   void shareSpareIterations(int iterations);
   void relaxIslands(int relaxIterations);
   void summariseIterations();
@@ -167,7 +167,7 @@ class World {
   IslandSplitter splitter_;
   std::vector<int32_t> layoutOf_;     // per island: index into layouts_, or -1 when not split
   std::vector<StripLayout> layouts_;  // strips of this step's split islands (grows, then reused)
-  std::vector<float> stripResidual_;  // per layout, per strip: residual of its last sweep
+  std::vector<SweepResult> stripResult_;  // per layout, per strip: what its last sweep did
 
   std::vector<Joint> joints_;
   std::vector<JointConstraint> jointConstraints_;  // solver rows, grouped by island like constraints_
