@@ -3,6 +3,8 @@
 #include "haif/adaptive_controller.h"
 #include "haif/world.h"
 
+#include "support/physics_test_util.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -156,18 +158,8 @@ TEST(AdaptiveController, TinyBudgetInWorldReportsEveryMiss) {
   WorldSettings ws;
   ws.budgetMs = 0.001;
   World w(ws);
-  BodyDef g;
-  g.kind = BodyKind::Static;
-  g.shape = Shape::box(Vec3(500.0f, 1.0f, 500.0f));
-  g.xf.p = Vec3(0.0f, -1.0f, 0.0f);
-  w.addBody(g);
-  for (int h = 0; h < 5; ++h) {
-    BodyDef d;
-    d.shape = Shape::box(Vec3::Constant(0.5f));
-    d.mass = 1.0f;
-    d.xf.p = Vec3(0.0f, 0.5f + 1.01f * float(h), 0.0f);
-    w.addBody(d);
-  }
+  test::addGround(w);
+  test::addColumn(w, 5, 0.0f, 0.0f, 1.01f);
   AdaptiveSettings s;
   s.iMin = 4;
   w.setController(std::make_unique<AdaptiveController>(CostModel{}, s, true));

@@ -1,6 +1,8 @@
 // Island formation: connected components of awake dynamic bodies; statics never join or merge islands.
 #include "haif/world.h"
 
+#include "support/physics_test_util.h"
+
 #include <gtest/gtest.h>
 
 #include <map>
@@ -9,27 +11,10 @@
 namespace haif {
 namespace {
 
-uint32_t addGround(World& w) {
-  BodyDef d;
-  d.kind = BodyKind::Static;
-  d.shape = Shape::box(Vec3(500.0f, 1.0f, 500.0f));
-  d.xf.p = Vec3(0.0f, -1.0f, 0.0f);
-  return w.addBody(d);
-}
+using test::addBox;
+using test::addGround;
 
-uint32_t addBox(World& w, const Vec3& p) {
-  BodyDef d;
-  d.shape = Shape::box(Vec3::Constant(0.5f));
-  d.xf.p = p;
-  d.mass = 1.0f;
-  return w.addBody(d);
-}
-
-std::vector<uint32_t> addStack(World& w, float x, float z, int n) {
-  std::vector<uint32_t> ids;
-  for (int h = 0; h < n; ++h) ids.push_back(addBox(w, Vec3(x, 0.5f + 1.005f * float(h), z)));
-  return ids;
-}
+std::vector<uint32_t> addStack(World& w, float x, float z, int n) { return test::addColumn(w, n, x, z, 1.005f); }
 
 // Every awake dynamic body is in exactly one island, islandOf agrees, and islands are largest first.
 void checkPartition(const World& w) {

@@ -1,6 +1,8 @@
 // DESIGN.md §5 solve error e = |v_I - v*|_M / |v_0 - v*|_M: in [0, 1], smaller with more iterations.
 #include "haif/world.h"
 
+#include "support/physics_test_util.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,18 +19,8 @@ ErrorStats stackError(int iterations, int steps) {
   WorldSettings ws;
   ws.iterations = iterations;
   World w(ws);
-  BodyDef g;
-  g.kind = BodyKind::Static;
-  g.shape = Shape::box(Vec3(500.0f, 1.0f, 500.0f));
-  g.xf.p = Vec3(0.0f, -1.0f, 0.0f);
-  w.addBody(g);
-  for (int h = 0; h < 10; ++h) {
-    BodyDef d;
-    d.shape = Shape::box(Vec3::Constant(0.5f));
-    d.mass = 1.0f;
-    d.xf.p = Vec3(0.0f, 0.5f + 1.01f * float(h), 0.0f);
-    w.addBody(d);
-  }
+  test::addGround(w);
+  test::addColumn(w, 10, 0.0f, 0.0f, 1.01f);
   w.setSolveErrorInterval(1);
   ErrorStats e;
   double sum = 0.0;
@@ -80,18 +72,8 @@ TEST(SolveError, MeasuringDoesNotChangeTheSimulation) {
   // The reference solve is a measurement: the state after the step must be the same with or without it.
   auto hashAfter = [](int every) {
     World w;
-    BodyDef g;
-    g.kind = BodyKind::Static;
-    g.shape = Shape::box(Vec3(500.0f, 1.0f, 500.0f));
-    g.xf.p = Vec3(0.0f, -1.0f, 0.0f);
-    w.addBody(g);
-    for (int h = 0; h < 5; ++h) {
-      BodyDef d;
-      d.shape = Shape::box(Vec3::Constant(0.5f));
-      d.mass = 1.0f;
-      d.xf.p = Vec3(0.02f * float(h), 0.5f + 1.01f * float(h), 0.0f);
-      w.addBody(d);
-    }
+    test::addGround(w);
+    for (int h = 0; h < 5; ++h) test::addBox(w, Vec3(0.02f * float(h), 0.5f + 1.01f * float(h), 0.0f));
     w.setSolveErrorInterval(every);
     for (int s = 0; s < 60; ++s) w.step();
     return w.stateHash();

@@ -1,10 +1,15 @@
 // Islands that converge early hand their unspent iterations to islands that still need them.
 #include "haif/world.h"
 
+#include "support/physics_test_util.h"
+
 #include <gtest/gtest.h>
 
 namespace haif {
 namespace {
+
+using test::addBox;
+using test::addGround;
 
 /// Always I = 4, and islands may stop after one sweep once converged.
 class FourIterations final : public IterationController {
@@ -14,24 +19,12 @@ class FourIterations final : public IterationController {
   std::string name() const override { return "four"; }
 };
 
-void addBox(World& w, const Vec3& p) {
-  BodyDef d;
-  d.shape = Shape::box(Vec3::Constant(0.5f));
-  d.mass = 1.0f;
-  d.xf.p = p;
-  w.addBody(d);
-}
-
 TEST(SpareIterations, GoToTheIslandThatStillNeedsThem) {
   WorldSettings ws;
   ws.residualTolerance = 1e-3f;
   World w(ws);
   w.setController(std::make_unique<FourIterations>());
-  BodyDef g;
-  g.kind = BodyKind::Static;
-  g.shape = Shape::box(Vec3(500.0f, 1.0f, 500.0f));
-  g.xf.p = Vec3(0.0f, -1.0f, 0.0f);
-  w.addBody(g);
+  addGround(w);
   // Many single boxes already at rest (they converge in a sweep) and one stack dropped onto
   // itself with gaps (4 sweeps cannot converge it while it lands).
   for (int i = 0; i < 20; ++i) addBox(w, Vec3(3.0f * float(i + 1), 0.5f, 0.0f));
@@ -55,11 +48,7 @@ TEST(SpareIterations, NotInFixedMode) {
   ws.iterations = 4;
   ws.residualTolerance = 1e-3f;  // fixed mode runs its I: iMin == I, so nothing stops early
   World w(ws);
-  BodyDef g;
-  g.kind = BodyKind::Static;
-  g.shape = Shape::box(Vec3(500.0f, 1.0f, 500.0f));
-  g.xf.p = Vec3(0.0f, -1.0f, 0.0f);
-  w.addBody(g);
+  addGround(w);
   for (int i = 0; i < 5; ++i) addBox(w, Vec3(3.0f * float(i + 1), 0.5f, 0.0f));
   for (int h = 0; h < 10; ++h) addBox(w, Vec3(0.0f, 0.5f + 1.05f * float(h), 0.0f));
   for (int s = 0; s < 30; ++s) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace haif::test {
 
@@ -38,9 +39,12 @@ inline uint32_t addSphere(World& w, const Vec3& p, float r = 0.5f, float mass = 
   return w.addBody(d);
 }
 
-/// A column of `count` unit boxes (mass 1) standing on the ground at (x, z), touching.
-inline void addColumn(World& w, int count, float x = 0.0f, float z = 0.0f) {
-  for (int h = 0; h < count; ++h) addBox(w, Vec3(x, 0.5f + float(h), z));
+/// A column of `count` unit boxes (mass 1) on the ground at (x, z), box h at y = 0.5 + pitch·h
+/// (pitch 1: touching; the reference stacks of DESIGN.md §6 use 1.01). Returns the box ids, bottom first.
+inline std::vector<uint32_t> addColumn(World& w, int count, float x = 0.0f, float z = 0.0f, float pitch = 1.0f) {
+  std::vector<uint32_t> ids;
+  for (int h = 0; h < count; ++h) ids.push_back(addBox(w, Vec3(x, 0.5f + pitch * float(h), z)));
+  return ids;
 }
 
 /// The 2D pyramid of DESIGN.md §6 (large_pyramid) with `base` boxes in the bottom row, centred on x = 0.
