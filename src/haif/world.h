@@ -37,6 +37,7 @@ struct WorldSettings {
   float maxPushVelocity = 0.2f;     ///< cap on the Baumgarte push-out speed (m/s)
   bool topDownOrder = true;         ///< solve the highest contacts of an island first
   bool accelerate = true;           ///< conjugate-gradient momentum between sweeps (contact_solver.h)
+  bool coldStartFromWeight = true;  ///< new contacts of a resting pile start from the weight they carry
   JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)
   bool sleeping = false;
   float timeToSleep = 0.5f;         ///< s an island must rest before it sleeps
@@ -133,6 +134,7 @@ class World {
   double measureSolveError(int iterations);
   void detectSleep();
   void orderContactsTopDown();
+  void estimateColdImpulses();
   void putIslandToSleep(const Island& isl);
   void wakeJointedBodies();
   void stiffenJointedBodies();
@@ -159,6 +161,8 @@ class World {
   IslandSet islands_;
   std::vector<int32_t> islandOfBody_;
   std::vector<float> contactHeight_;  // solve-order key per contact
+  std::vector<float> carried_;        // per body: weight impulse (N s) it carries this step, for cold contacts
+  std::vector<uint16_t> supports_;    // per body: contacts holding it up
   std::vector<ContactConstraint> constraints_;
   std::vector<int> islandIterations_;
   std::vector<float> islandResidual_;

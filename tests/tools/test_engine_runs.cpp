@@ -135,7 +135,10 @@ TEST_F(EngineRuns, BothEnginesFallAtGAndRestTheSame) {
     // The box stays where it was; penetration stays near the slop.
     EXPECT_NEAR(bodies[0].p.y(), 0.5, 0.01);
     EXPECT_LT(metrics.maxPenetration(), 0.02);
-    EXPECT_GT(metrics.maxPenetration(), 0.0);
+    // Bullet's box sinks into the slop; HAIF's starts from the impulse of its weight (a cold contact
+    // at rest, World::estimateColdImpulses) and need not sink at all.
+    if (std::string(spec).rfind("bullet", 0) == 0) EXPECT_GT(metrics.maxPenetration(), 0.0);
+    else EXPECT_GE(metrics.maxPenetration(), 0.0);
     EXPECT_LE(metrics.rmsPenetration(), metrics.maxPenetration());
     EXPECT_NEAR(metrics.maxPenetrationFraction(), metrics.maxPenetration() / 1.0, 1e-9);
     // Mean drop: the sphere's fall dominates (≈ 17.6 m / 2 bodies).
