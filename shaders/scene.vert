@@ -10,6 +10,7 @@ layout(location = 4) in vec4 iQuat;      // orientation quaternion (x, y, z, w)
 layout(location = 5) in vec3 iScale;     // half extents / radius
 layout(location = 6) in float iStretch;  // capsule half height
 layout(location = 7) in vec4 iColor;     // linear rgb, a = emissive amount (markers)
+layout(location = 8) in float iHiddenFaces;  // box faces to drop (bit mask as a float), 0 otherwise
 
 uniform mat4 uViewProj;
 uniform mat4 uLightViewProj;
@@ -46,6 +47,16 @@ vec3 rotate(vec4 q, vec3 v) {
   return v + q.w * t + cross(q.xyz, t);
 }
 
+// Box faces the renderer found inside a neighbouring box (bit 2 * axis + (normal > 0)) are sent
+// outside the clip volume; all corners of a face move together, so its triangles are dropped whole.
+bool hiddenFace() {
+  if (iHiddenFaces < 0.5) return false;
+  vec3 a = abs(aNormal);
+  int axis = a.x > 0.5 ? 0 : (a.y > 0.5 ? 1 : 2);
+  int bit = 2 * axis + (aNormal[axis] > 0.0 ? 1 : 0);
+  return ((int(iHiddenFaces) >> bit) & 1) != 0;
+}
+
 void main() {
   vec3 local = aPos * iScale + vec3(0.0, aCapSide * iStretch, 0.0);
   vec3 world = iPos + rotate(iQuat, local);
@@ -58,7 +69,7 @@ void main() {
   vLightPos = uLightViewProj * vec4(world + n * uShadowNormalOffset, 1.0);
   vUnitPos = aPos;
   vScale = iScale;
-  gl_Position = uViewProj * vec4(world, 1.0);
+  gl_Position = hiddenFace() ? vec4(2.0, 2.0, 2.0, 1.0) : uViewProj * vec4(world, 1.0);
 #if SURFACE == 2
   float ndl = max(dot(n, uSunDir), 0.0);
   vec3 ambient = mix(uGroundAmbient, uSkyAmbient, n.y * 0.5 + 0.5);

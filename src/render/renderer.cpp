@@ -9,6 +9,7 @@
 
 #include "render/gl_context.h"
 #include "render/gl_functions.h"
+#include "render/hidden_box_faces.h"
 #include "render/mesh_builder.h"
 #include "render/overlay.h"
 #include "render/palette.h"
@@ -20,8 +21,9 @@
 namespace haif::render {
 namespace {
 
-// Per-instance record: position 3, quaternion 4, scale 3, capsule stretch 1, colour+emissive 4.
-constexpr int kInstanceFloats = 15;
+// Per-instance record: position 3, quaternion 4, scale 3, capsule stretch 1, colour+emissive 4,
+// hidden box faces 1 (a HiddenBoxFaces mask as a float; 0 for other shapes).
+constexpr int kInstanceFloats = 16;
 constexpr GLsizei kInstanceStride = kInstanceFloats * sizeof(float);
 constexpr float kPlaneHalfSize = 1000.f;
 constexpr int kSkyRows = 24;  // must match kRows in shaders/sky.vert
@@ -73,6 +75,9 @@ struct Renderer::Impl {
   std::vector<SortItem> order;
   std::vector<FramingSphere> framing;
   std::vector<DrawGroup> groups;
+  HiddenBoxFaces hiddenFaces;
+  std::vector<BoxPose> boxPoses;      // boxes of this frame in draw order, for hiddenFaces
+  std::vector<uint8_t> hiddenMasks;   // per entry of boxPoses
   std::vector<uint8_t> readback;
   std::unique_ptr<TextRenderer> text;  // created on the first frame with the overlay enabled
   RenderPhaseTimes phases;
@@ -131,7 +136,7 @@ struct Renderer::Impl {
     gl.EnableVertexAttribArray(2);
     gl.VertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(6 * sizeof(float)));
     // Instance attributes: enabled and stepped once per instance; their pointers are set per draw.
-    for (GLuint a = 3; a <= 7; ++a) {
+    for (GLuint a = 3; a <= 8; ++a) {
       gl.EnableVertexAttribArray(a);
       gl.VertexAttribDivisor(a, 1);
     }
@@ -247,15 +252,41 @@ struct Renderer::Impl {
 
   static bool finite3(const float* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
-  void pushInstance(Vec3 p, const float* q, Vec3 scale, float stretch, LinearColor c, float emissive) {
-    float qn[4] = {q[0], q[1], q[2], q[3]};
+  // Unit quaternion from q; identity for a zero or non-finite one.
+  static void normalizedQuat(const float* q, float* qn) {
+    for (int k = 0; k < 4; ++k) qn[k] = q[k];
     const float len = std::sqrt(qn[0] * qn[0] + qn[1] * qn[1] + qn[2] * qn[2] + qn[3] * qn[3]);
     if (!(len > 1e-12f) || !std::isfinite(len))
       qn[0] = qn[1] = qn[2] = 0.f, qn[3] = 1.f;
     else
-      for (float& v : qn) v /= len;
+      for (int k = 0; k < 4; ++k) qn[k] /= len;
+  }
+
+  void pushInstance(Vec3 p, const float* q, Vec3 scale, float stretch, LinearColor c, float emissive,
+                    uint8_t hidden = 0) {
+    float qn[4];
+    normalizedQuat(q, qn);
     staging.insert(staging.end(), {p.x, p.y, p.z, qn[0], qn[1], qn[2], qn[3], scale.x, scale.y, scale.z,
-                                   stretch, c.r, c.g, c.b, emissive});
+                                   stretch, c.r, c.g, c.b, emissive, static_cast<float>(hidden)});
+  }
+
+  // Hidden-face masks for the boxes of the sorted order (ground boxes included: they cover the
+  // bottoms of the boxes resting on them), in the order buildInstances pushes them.
+  void findHiddenBoxFaces(const FrameInput& f) {
+    boxPoses.clear();
+    for (const SortItem& s : order) {
+      if (s.kind != kBox && s.kind != kGroundBox) continue;
+      const Instance& in = f.instances[s.index];
+      BoxPose b;
+      b.center = {in.position[0], in.position[1], in.position[2]};
+      normalizedQuat(in.orientation, b.orientation);
+      b.half = {in.halfExtents[0], in.halfExtents[1], in.halfExtents[2]};
+      boxPoses.push_back(b);
+    }
+    if (opt.cullHiddenBoxFaces)
+      hiddenFaces.find(boxPoses, hiddenMasks);
+    else
+      hiddenMasks.assign(boxPoses.size(), 0);
   }
 
   size_t instanceCount() const { return staging.size() / kInstanceFloats; }
@@ -323,7 +354,8 @@ struct Renderer::Impl {
       return a.kind != b.kind ? a.kind < b.kind : a.meshId != b.meshId ? a.meshId < b.meshId : a.depth < b.depth;
     });
 
-    size_t groupStart = 0;
+    findHiddenBoxFaces(f);
+    size_t groupStart = 0, boxIndex = 0;
     for (size_t k = 0; k < order.size(); ++k) {
       const SortItem& s = order[k];
       const Instance& in = f.instances[s.index];
@@ -331,7 +363,8 @@ struct Renderer::Impl {
       const LinearColor c = instanceColor(in, f.mode);
       switch (s.kind) {
         case kGroundBox: case kBox:
-          pushInstance(p, in.orientation, {in.halfExtents[0], in.halfExtents[1], in.halfExtents[2]}, 0.f, c, 0.f);
+          pushInstance(p, in.orientation, {in.halfExtents[0], in.halfExtents[1], in.halfExtents[2]}, 0.f, c, 0.f,
+                       hiddenMasks[boxIndex++]);
           break;
         case kGroundPlane: pushInstance(p, in.orientation, {kPlaneHalfSize, 1.f, kPlaneHalfSize}, 0.f, c, 0.f); break;
         case kSphere: pushInstance(p, in.orientation, {in.radius, in.radius, in.radius}, 0.f, c, 0.f); break;
@@ -398,6 +431,7 @@ struct Renderer::Impl {
     gl.VertexAttribPointer(5, 3, GL_FLOAT, GL_FALSE, kInstanceStride, at(7));
     gl.VertexAttribPointer(6, 1, GL_FLOAT, GL_FALSE, kInstanceStride, at(10));
     gl.VertexAttribPointer(7, 4, GL_FLOAT, GL_FALSE, kInstanceStride, at(11));
+    gl.VertexAttribPointer(8, 1, GL_FLOAT, GL_FALSE, kInstanceStride, at(15));
     if (g.cull)
       gl.Enable(GL_CULL_FACE);
     else
