@@ -20,12 +20,22 @@ out vec3 vWorldPos;
 out vec3 vNormal;
 out vec3 vColor;
 out float vEmissive;
-out vec4 vLightPos;
+out vec3 vShadowCoord;   // shadow map coordinates and depth in [0, 1] (the sun's view is orthographic)
 out vec3 vUnitPos;       // position on the unit shape, for box edge lines
 flat out vec3 vScale;
 
 #ifndef SURFACE
 #define SURFACE 0
+#endif
+#if SURFACE == 1
+// The ground's faces are flat too: its lighting but for the shadow and the grid is per vertex.
+uniform vec3 uSunDir;
+uniform vec3 uSunColor;
+uniform vec3 uSkyAmbient;
+uniform vec3 uGroundAmbient;
+uniform vec3 uEye;
+out vec3 vAmbient;
+out vec3 vSunLit;  // sun * max(n.l, 0)
 #endif
 #if SURFACE == 2
 // Boxes are lit per vertex (flat faces, distant sun: exact but for the tiny change of the view
@@ -66,10 +76,15 @@ void main() {
   vNormal = n;
   vColor = iColor.rgb;
   vEmissive = iColor.a;
-  vLightPos = uLightViewProj * vec4(world + n * uShadowNormalOffset, 1.0);
+  vShadowCoord = (uLightViewProj * vec4(world + n * uShadowNormalOffset, 1.0)).xyz * 0.5 + 0.5;
   vUnitPos = aPos;
   vScale = iScale;
   gl_Position = hiddenFace() ? vec4(2.0, 2.0, 2.0, 1.0) : uViewProj * vec4(world, 1.0);
+#if SURFACE == 1
+  vec3 nf = dot(n, uEye - world) < 0.0 ? -n : n;  // the two-sided plane seen from below
+  vAmbient = mix(uGroundAmbient, uSkyAmbient, nf.y * 0.5 + 0.5);
+  vSunLit = uSunColor * max(dot(nf, uSunDir), 0.0);
+#endif
 #if SURFACE == 2
   float ndl = max(dot(n, uSunDir), 0.0);
   vec3 ambient = mix(uGroundAmbient, uSkyAmbient, n.y * 0.5 + 0.5);

@@ -70,6 +70,7 @@ struct Renderer::Impl {
   size_t instanceCapacity = 0;  // bytes
   GLuint msaaFbo = 0, msaaColor = 0, msaaDepth = 0, resolveFbo = 0, resolveColor = 0;
   GLuint shadowFbo = 0, shadowTex = 0, emptyVao = 0;
+  bool shadowMapEmpty = false;  // the map holds only the far depth (cleared while nothing casts)
   // Reused every frame so steady-state rendering does not allocate.
   std::vector<float> staging;
   std::vector<SortItem> order;
@@ -197,12 +198,15 @@ struct Renderer::Impl {
       if (!checkFramebuffer("resolve", error)) return false;
     }
 
-    if (opt.shadowMapSize > 0) {
-      opt.shadowMapSize = std::min(opt.shadowMapSize, 8192);
+    {
+      // Always present (1 texel without shadows): scene.frag samples it unconditionally, and a
+      // map holding 1.0 everywhere lights every point.
+      opt.shadowMapSize = std::clamp(opt.shadowMapSize, 0, 8192);
+      const int side = std::max(opt.shadowMapSize, 1);
       gl.GenTextures(1, &shadowTex);
       gl.BindTexture(GL_TEXTURE_2D, shadowTex);
-      gl.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, opt.shadowMapSize, opt.shadowMapSize, 0,
-                    GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, nullptr);
+      gl.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, side, side, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT,
+                    nullptr);
       // Linear filtering + compare mode: each tap is already a 2x2 bilinear PCF.
       gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
       gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -218,10 +222,21 @@ struct Renderer::Impl {
       gl.DrawBuffer(GL_NONE);
       gl.ReadBuffer(GL_NONE);
       if (!checkFramebuffer("shadow", error)) return false;
+      clearShadowMap();
     }
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
     readback.resize(static_cast<size_t>(opt.width) * opt.height * 4);
     return checkGl("initialisation", error);
+  }
+
+  // Fills the shadow map with the far depth (nothing casts); needs shadowFbo bound.
+  void clearShadowMap() {
+    const int side = std::max(opt.shadowMapSize, 1);
+    gl.Viewport(0, 0, side, side);
+    gl.DepthMask(GL_TRUE);
+    gl.ClearDepth(1.0);
+    gl.Clear(GL_DEPTH_BUFFER_BIT);
+    shadowMapEmpty = true;
   }
 
   bool checkFramebuffer(const char* what, std::string* error) {
@@ -510,6 +525,10 @@ struct Renderer::Impl {
       for (size_t i = 0; i < groupsBeforeMarkers; ++i)
         if (groups[i].castsShadow) drawGroup(groups[i]);
       gl.Disable(GL_POLYGON_OFFSET_FILL);
+      shadowMapEmpty = false;
+    } else if (!shadowMapEmpty) {
+      gl.BindFramebuffer(GL_FRAMEBUFFER, shadowFbo);
+      clearShadowMap();
     }
     mark(&phases.shadow);
 
@@ -527,8 +546,6 @@ struct Renderer::Impl {
       gl.UniformMatrix4fv(sp.uniform("uLightViewProj"), 1, GL_FALSE, lightVP.m);
       gl.Uniform1f(sp.uniform("uShadowNormalOffset"), 1.5f * texelWorld);
       gl.Uniform1i(sp.uniform("uShadowMap"), 0);
-      gl.Uniform1f(sp.uniform("uShadowTexel"), opt.shadowMapSize > 0 ? 1.f / opt.shadowMapSize : 0.f);
-      gl.Uniform1i(sp.uniform("uShadowsOn"), shadows ? 1 : 0);
       gl.Uniform3f(sp.uniform("uSunDir"), kSunDir.x, kSunDir.y, kSunDir.z);
       gl.Uniform3f(sp.uniform("uSunColor"), 1.25f, 1.18f, 1.05f);
       gl.Uniform3f(sp.uniform("uSkyAmbient"), 0.30f, 0.36f, 0.46f);
