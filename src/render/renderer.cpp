@@ -15,6 +15,7 @@
 #include "render/palette.h"
 #include "render/png_io.h"
 #include "render/shader_program.h"
+#include "render/sky_extent.h"
 #include "render/text_renderer.h"
 #include "render/view_setup.h"
 
@@ -76,6 +77,7 @@ struct Renderer::Impl {
   std::vector<SortItem> order;
   std::vector<FramingSphere> framing;
   std::vector<DrawGroup> groups;
+  std::vector<GroundFace> groundFaces;  // for skyStartNdc
   HiddenBoxFaces hiddenFaces;
   std::vector<BoxPose> boxPoses;      // boxes of this frame in draw order, for hiddenFaces
   std::vector<uint8_t> hiddenMasks;   // per entry of boxPoses
@@ -370,12 +372,14 @@ struct Renderer::Impl {
     });
 
     findHiddenBoxFaces(f);
+    groundFaces.clear();
     size_t groupStart = 0, boxIndex = 0;
     for (size_t k = 0; k < order.size(); ++k) {
       const SortItem& s = order[k];
       const Instance& in = f.instances[s.index];
       const Vec3 p{in.position[0], in.position[1], in.position[2]};
       const LinearColor c = instanceColor(in, f.mode);
+      if (s.kind == kGroundBox || s.kind == kGroundPlane) addGroundFace(in, s.kind == kGroundBox);
       switch (s.kind) {
         case kGroundBox: case kBox:
           pushInstance(p, in.orientation, {in.halfExtents[0], in.halfExtents[1], in.halfExtents[2]}, 0.f, c, 0.f,
@@ -400,6 +404,20 @@ struct Renderer::Impl {
       }
       groupStart = instanceCount();
     }
+  }
+
+  // The face the ground is seen by: a ground box's local +y face, or the plane.
+  void addGroundFace(const Instance& in, bool isBox) {
+    float q[4];
+    normalizedQuat(in.orientation, q);
+    GroundFace g;
+    g.normal = rotate(q, {0.f, 1.f, 0.f});
+    g.axisU = rotate(q, {1.f, 0.f, 0.f});
+    g.axisV = rotate(q, {0.f, 0.f, 1.f});
+    g.center = Vec3{in.position[0], in.position[1], in.position[2]} + g.normal * (isBox ? in.halfExtents[1] : 0.f);
+    g.halfU = isBox ? in.halfExtents[0] : kPlaneHalfSize;
+    g.halfV = isBox ? in.halfExtents[2] : kPlaneHalfSize;
+    groundFaces.push_back(g);
   }
 
   void buildContactMarkers(const FrameInput& f, float meanRadius) {
@@ -577,8 +595,10 @@ struct Renderer::Impl {
     gl.Uniform2f(skyProgram.uniform("uTanHalfFov"), view.tanHalfFovY * view.aspect, view.tanHalfFovY);
     gl.Uniform3f(skyProgram.uniform("uHorizon"), horizon.r, horizon.g, horizon.b);
     gl.Uniform3f(skyProgram.uniform("uZenith"), zenith.r, zenith.g, zenith.b);
+    const float skyBottom = skyStartNdc(view, opt.height, groundFaces);
+    gl.Uniform1f(skyProgram.uniform("uBottom"), skyBottom);
     gl.BindVertexArray(emptyVao);
-    gl.DrawArrays(GL_TRIANGLE_STRIP, 0, 2 * (kSkyRows + 1));
+    if (skyBottom < 1.f) gl.DrawArrays(GL_TRIANGLE_STRIP, 0, 2 * (kSkyRows + 1));
     gl.DepthMask(GL_TRUE);
     gl.DepthFunc(GL_LESS);
     gl.BindVertexArray(0);

@@ -301,6 +301,34 @@ TEST(Renderer, DroppingHiddenBoxFacesKeepsThePicture) {
   }
 }
 
+TEST(Renderer, EveryPixelIsRepaintedEachFrame) {
+  // The colour buffer is never cleared: the sky strip (which starts at the ground's far edge) and
+  // the geometry must together paint every pixel. A frame filled with a red box, then an ordinary
+  // frame, must look exactly like that ordinary frame from a fresh renderer.
+  auto used = makeRenderer(320, 240);
+  auto fresh = makeRenderer(320, 240);
+  ASSERT_TRUE(used && fresh);
+  FrameInput wall;
+  wall.camera = frontCamera();
+  Instance red = coloredBody(ShapeKind::Box, 0.f, 1.5f, 0.f, 0.9f, 0.1f, 0.1f);
+  red.halfExtents[0] = red.halfExtents[1] = 50.f;
+  wall.instances.push_back(red);
+  std::vector<uint8_t> a, b;
+  std::string error;
+  ASSERT_TRUE(used->render(wall, a, &error)) << error;
+  for (const float eyeY : {1.5f, 6.f, 40.f}) {
+    FrameInput f;
+    f.camera = frontCamera();
+    f.camera.eye[1] = eyeY;
+    f.instances.push_back(groundBox());
+    f.instances.push_back(coloredBody(ShapeKind::Box, 0.f, 1.f, 0.f, 0.2f, 0.8f, 0.2f));
+    ASSERT_TRUE(used->render(f, a, &error)) << error;
+    ASSERT_TRUE(fresh->render(f, b, &error)) << error;
+    EXPECT_EQ(differingPixels(a, b), 0) << "eye height " << eyeY;
+    ASSERT_TRUE(used->render(wall, a, &error)) << error;
+  }
+}
+
 // Prints (does not assert) the frame time of the performance target: 2000 boxes, 1280x720,
 // shadows (1024 map) and 4x MSAA, with and without the overlay. Timings on a shared machine are noisy.
 TEST(RenderBenchmark, Stacks2000FrameTimePrinted) {
