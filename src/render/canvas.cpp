@@ -28,10 +28,12 @@ void Canvas::blend(int x, int y, Rgba c, float coverage) {
   const float a = std::clamp(coverage, 0.f, 1.f) * (c.a / 255.f);
   if (a <= 0.f) return;
   uint8_t* p = rgba_ + 4 * (static_cast<size_t>(y) * width_ + x);
-  p[0] = static_cast<uint8_t>(std::lround(p[0] + (c.r - p[0]) * a));
-  p[1] = static_cast<uint8_t>(std::lround(p[1] + (c.g - p[1]) * a));
-  p[2] = static_cast<uint8_t>(std::lround(p[2] + (c.b - p[2]) * a));
-  p[3] = static_cast<uint8_t>(std::lround(p[3] + (255 - p[3]) * a));
+  // Each value lies between two bytes, so +0.5 and truncation round it (lround is a libm call,
+  // and the overlay blends every pixel of its panel each frame).
+  p[0] = static_cast<uint8_t>(p[0] + (c.r - p[0]) * a + 0.5f);
+  p[1] = static_cast<uint8_t>(p[1] + (c.g - p[1]) * a + 0.5f);
+  p[2] = static_cast<uint8_t>(p[2] + (c.b - p[2]) * a + 0.5f);
+  p[3] = static_cast<uint8_t>(p[3] + (255 - p[3]) * a + 0.5f);
 }
 
 void Canvas::fillRect(float x0, float y0, float x1, float y1, Rgba c) {
