@@ -8,6 +8,9 @@
 #ifndef SURFACE
 #define SURFACE 0
 #endif
+#ifndef RECEIVES_SHADOW  // 0: a ground variant for where no shadow can fall
+#define RECEIVES_SHADOW 1
+#endif
 
 in vec3 vWorldPos;
 in vec3 vNormal;
@@ -95,7 +98,11 @@ void main() {
   float dist2 = dot(toEye, toEye);
   float fade = 1.0 - smoothstep(uGridFade * 0.35, uGridFade, sqrt(dist2));
   vec3 albedo = uGroundColor * (1.0 - gridLines(vWorldPos.xz / uGridSpacing) * fade);
+#if RECEIVES_SHADOW
   vec3 lit = albedo * (vAmbient + vSunLit * shadowFactor());
+#else
+  vec3 lit = albedo * (vAmbient + vSunLit);
+#endif
   // Gaussian fog: the scene itself stays clear, the far ground melts into the horizon.
   float fog = 1.0 - exp(-dist2 / (uFogDistance * uFogDistance));
   fragColor = vec4(encodeSrgb(mix(lit, uFogColor, fog)), 1.0);

@@ -18,6 +18,7 @@ class GlContext;
   X(PFNGLENABLEPROC, Enable, "glEnable")                                            \
   X(PFNGLDISABLEPROC, Disable, "glDisable")                                         \
   X(PFNGLVIEWPORTPROC, Viewport, "glViewport")                                      \
+  X(PFNGLSCISSORPROC, Scissor, "glScissor")                                         \
   X(PFNGLCLEARPROC, Clear, "glClear")                                               \
   X(PFNGLCLEARCOLORPROC, ClearColor, "glClearColor")                                \
   X(PFNGLCLEARDEPTHPROC, ClearDepth, "glClearDepth")                                \

@@ -15,6 +15,7 @@
 #include "render/palette.h"
 #include "render/png_io.h"
 #include "render/shader_program.h"
+#include "render/shadow_footprint.h"
 #include "render/sky_extent.h"
 #include "render/text_renderer.h"
 #include "render/view_setup.h"
@@ -32,7 +33,8 @@ constexpr int kSkyRows = 24;  // must match kRows in shaders/sky.vert
 // Ordering of draw groups: bodies first (each group front to back), the ground after them, so
 // early depth testing skips most hidden pixels; fragment work dominates on llvmpipe.
 enum GroupKind : uint32_t { kBox, kSphere, kCapsule, kHull, kTriMesh, kGroundBox, kGroundPlane };
-enum Surface : int { kSurfaceBody = 0, kSurfaceGround = 1, kSurfaceBox = 2 };
+// kSurfaceGroundUnshadowed: the ground where no shadow can fall (no shadow map lookup).
+enum Surface : int { kSurfaceBody = 0, kSurfaceGround = 1, kSurfaceBox = 2, kSurfaceGroundUnshadowed = 3 };
 
 struct GpuMesh {
   GLuint vao = 0, vbo = 0, ibo = 0;
@@ -64,7 +66,7 @@ struct Renderer::Impl {
   int samples = 1;
   std::unique_ptr<GlContext> ctx;
   GlFunctions gl;
-  ShaderProgram sceneProgram[3], shadowProgram, skyProgram;  // scene: one variant per Surface
+  ShaderProgram sceneProgram[4], shadowProgram, skyProgram;  // scene: one variant per Surface
   GpuMesh box, sphere, capsule, plane;
   std::unordered_map<uint32_t, GpuMesh> meshes;
   GLuint instanceVbo = 0;
@@ -158,10 +160,12 @@ struct Renderer::Impl {
     }
     ctx = createOsMesaContext(error);
     if (!ctx || !gl.load(*ctx, error)) return false;
-    for (int surface : {kSurfaceBody, kSurfaceGround, kSurfaceBox})
-      if (!sceneProgram[surface].load(gl, opt.shaderDir, "scene.vert", "scene.frag", error,
-                                      "#define SURFACE " + std::to_string(surface) + "\n"))
-        return false;
+    for (int surface : {kSurfaceBody, kSurfaceGround, kSurfaceBox, kSurfaceGroundUnshadowed}) {
+      const std::string defines = surface == kSurfaceGroundUnshadowed
+                                      ? "#define SURFACE 1\n#define RECEIVES_SHADOW 0\n"
+                                      : "#define SURFACE " + std::to_string(surface) + "\n";
+      if (!sceneProgram[surface].load(gl, opt.shaderDir, "scene.vert", "scene.frag", error, defines)) return false;
+    }
     if (!shadowProgram.load(gl, opt.shaderDir, "shadow.vert", "shadow.frag", error) ||
         !skyProgram.load(gl, opt.shaderDir, "sky.vert", "sky.frag", error))
       return false;
@@ -473,6 +477,32 @@ struct Renderer::Impl {
                              static_cast<GLsizei>(g.count));
   }
 
+  // A ground group: the shadowed variant inside `shade`, the unshadowed one in up to four bands
+  // around it (scissored, so each pixel is drawn by exactly one of them).
+  void drawGroundGroup(const DrawGroup& g, const PixelRect& shade) {
+    const int w = opt.width, h = opt.height;
+    if (shade.empty()) {
+      sceneProgram[kSurfaceGroundUnshadowed].use();
+      drawGroup(g);
+      return;
+    }
+    gl.Enable(GL_SCISSOR_TEST);
+    sceneProgram[kSurfaceGround].use();
+    gl.Scissor(shade.x0, shade.y0, shade.x1 - shade.x0, shade.y1 - shade.y0);
+    drawGroup(g);
+    sceneProgram[kSurfaceGroundUnshadowed].use();
+    const PixelRect bands[4] = {{0, 0, w, shade.y0},
+                                {0, shade.y1, w, h},
+                                {0, shade.y0, shade.x0, shade.y1},
+                                {shade.x1, shade.y0, w, shade.y1}};
+    for (const PixelRect& b : bands) {
+      if (b.empty()) continue;
+      gl.Scissor(b.x0, b.y0, b.x1 - b.x0, b.y1 - b.y0);
+      drawGroup(g);
+    }
+    gl.Disable(GL_SCISSOR_TEST);
+  }
+
   // Orthographic sun view fitted to the casters' box as seen from the sun (tighter than their
   // bounding sphere, so a smaller map gives the same texel size). Extents are quantised and the
   // centre snapped to whole texels so shadows do not shimmer when the framing moves a little.
@@ -577,8 +607,25 @@ struct Renderer::Impl {
     }
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D, shadowTex);
+    // The ground gets the shadow lookup only inside the rectangle where shadows can fall.
+    PixelRect shade{0, 0, opt.width, opt.height};
+    if (shadows) {
+      PixelRect u{opt.width, opt.height, 0, 0};
+      for (const GroundFace& face : groundFaces) {
+        const PixelRect r = groundShadowRect(view, opt.width, opt.height, bounds, kSunDir, face, 6.f * texelWorld);
+        u = {std::min(u.x0, r.x0), std::min(u.y0, r.y0), std::max(u.x1, r.x1), std::max(u.y1, r.y1)};
+      }
+      shade = u;
+    } else {
+      shade = PixelRect{};
+    }
     int bound = -1;
     for (const DrawGroup& g : groups) {
+      if (g.surface == kSurfaceGround) {
+        drawGroundGroup(g, shade);
+        bound = -1;
+        continue;
+      }
       if (g.surface != bound) sceneProgram[g.surface].use(), bound = g.surface;
       drawGroup(g);
     }

@@ -329,6 +329,34 @@ TEST(Renderer, EveryPixelIsRepaintedEachFrame) {
   }
 }
 
+TEST(Renderer, ShadowsOnlyDarkenTheGroundWhereTheyFall) {
+  // The same scene with and without a shadow map: the ground away from the shadow is drawn by a
+  // variant without the shadow lookup, so it must match exactly; the shadow itself is darker.
+  RendererOptions withMap, without;
+  withMap.width = without.width = 320, withMap.height = without.height = 240;
+  without.shadowMapSize = 0;
+  std::string error;
+  auto a = Renderer::create(withMap, &error);
+  auto b = Renderer::create(without, &error);
+  ASSERT_TRUE(a && b) << error;
+  FrameInput f;
+  f.camera = frontCamera();
+  f.camera.eye[1] = 5.f;
+  f.instances.push_back(groundBox());
+  f.instances.push_back(coloredBody(ShapeKind::Box, -1.f, 2.f, 0.f, 0.2f, 0.3f, 0.9f));
+  std::vector<uint8_t> pa, pb;
+  ASSERT_TRUE(a->render(f, pa, &error)) << error;
+  ASSERT_TRUE(b->render(f, pb, &error)) << error;
+  int darker = 0, brighter = 0, same = 0;
+  for (size_t i = 0; i < pa.size(); i += 4) {
+    const int d = (pa[i] + pa[i + 1] + pa[i + 2]) - (pb[i] + pb[i + 1] + pb[i + 2]);
+    darker += d < -30, brighter += d > 3, same += d == 0;
+  }
+  EXPECT_GT(darker, 150) << "the box casts a visible shadow";
+  EXPECT_EQ(brighter, 0) << "shadows never brighten";
+  EXPECT_GT(same, 320 * 240 * 8 / 10) << "most of the picture is untouched by the shadow";
+}
+
 // Prints (does not assert) the frame time of the performance target: 2000 boxes, 1280x720,
 // shadows (1024 map) and 4x MSAA, with and without the overlay. Timings on a shared machine are noisy.
 TEST(RenderBenchmark, Stacks2000FrameTimePrinted) {
