@@ -59,11 +59,11 @@ vec3 rotate(vec4 q, vec3 v) {
 
 // Box faces the renderer found inside a neighbouring box (bit 2 * axis + (normal > 0)) are sent
 // outside the clip volume; all corners of a face move together, so its triangles are dropped whole.
-bool hiddenFace() {
+bool hiddenFace(vec3 normal) {
   if (iHiddenFaces < 0.5) return false;
-  vec3 a = abs(aNormal);
+  vec3 a = abs(normal);
   int axis = a.x > 0.5 ? 0 : (a.y > 0.5 ? 1 : 2);
-  int bit = 2 * axis + (aNormal[axis] > 0.0 ? 1 : 0);
+  int bit = 2 * axis + (normal[axis] > 0.0 ? 1 : 0);
   return ((int(iHiddenFaces) >> bit) & 1) != 0;
 }
 
@@ -79,7 +79,7 @@ void main() {
   vShadowCoord = (uLightViewProj * vec4(world + n * uShadowNormalOffset, 1.0)).xyz * 0.5 + 0.5;
   vUnitPos = aPos;
   vScale = iScale;
-  gl_Position = hiddenFace() ? vec4(2.0, 2.0, 2.0, 1.0) : uViewProj * vec4(world, 1.0);
+  gl_Position = hiddenFace(aNormal) ? vec4(2.0, 2.0, 2.0, 1.0) : uViewProj * vec4(world, 1.0);
 #if SURFACE == 1
   vec3 nf = dot(n, uEye - world) < 0.0 ? -n : n;  // the two-sided plane seen from below
   vAmbient = mix(uGroundAmbient, uSkyAmbient, nf.y * 0.5 + 0.5);

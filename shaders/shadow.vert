@@ -11,6 +11,8 @@ layout(location = 6) in float iStretch;
 layout(location = 8) in float iHiddenFaces;
 
 uniform mat4 uLightViewProj;
+uniform int uBoxCorner;  // 1: the mesh is makeBoxCornerMesh, mirrored onto the faces turned to the sun
+uniform vec3 uSunDir;    // unit vector towards the sun
 
 vec3 rotate(vec4 q, vec3 v) {
   vec3 t = 2.0 * cross(q.xyz, v);
@@ -19,15 +21,24 @@ vec3 rotate(vec4 q, vec3 v) {
 
 // Box faces the renderer found inside a neighbouring box (bit 2 * axis + (normal > 0)) are sent
 // outside the clip volume; all corners of a face move together, so its triangles are dropped whole.
-bool hiddenFace() {
+bool hiddenFace(vec3 normal) {
   if (iHiddenFaces < 0.5) return false;
-  vec3 a = abs(aNormal);
+  vec3 a = abs(normal);
   int axis = a.x > 0.5 ? 0 : (a.y > 0.5 ? 1 : 2);
-  int bit = 2 * axis + (aNormal[axis] > 0.0 ? 1 : 0);
+  int bit = 2 * axis + (normal[axis] > 0.0 ? 1 : 0);
   return ((int(iHiddenFaces) >> bit) & 1) != 0;
 }
 
 void main() {
-  vec3 local = aPos * iScale + vec3(0.0, aCapSide * iStretch, 0.0);
-  gl_Position = hiddenFace() ? vec4(2.0, 2.0, 2.0, 1.0) : uLightViewProj * vec4(iPos + rotate(iQuat, local), 1.0);
+  vec3 pos = aPos, normal = aNormal;
+  if (uBoxCorner != 0) {
+    // Per axis, the face whose normal points to the sun in the box's frame. The mirror may reverse
+    // the winding, so the renderer draws these without face culling.
+    vec3 toSun = rotate(vec4(-iQuat.xyz, iQuat.w), uSunDir);
+    vec3 s = vec3(toSun.x < 0.0 ? -1.0 : 1.0, toSun.y < 0.0 ? -1.0 : 1.0, toSun.z < 0.0 ? -1.0 : 1.0);
+    pos *= s;
+    normal *= s;
+  }
+  vec3 local = pos * iScale + vec3(0.0, aCapSide * iStretch, 0.0);
+  gl_Position = hiddenFace(normal) ? vec4(2.0, 2.0, 2.0, 1.0) : uLightViewProj * vec4(iPos + rotate(iQuat, local), 1.0);
 }

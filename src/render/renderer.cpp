@@ -67,7 +67,7 @@ struct Renderer::Impl {
   std::unique_ptr<GlContext> ctx;
   GlFunctions gl;
   ShaderProgram sceneProgram[4], shadowProgram, skyProgram;  // scene: one variant per Surface
-  GpuMesh box, sphere, capsule, plane;
+  GpuMesh box, boxCorner, sphere, capsule, plane;  // boxCorner: the shadow pass's boxes
   std::unordered_map<uint32_t, GpuMesh> meshes;
   GLuint instanceVbo = 0;
   size_t instanceCapacity = 0;  // bytes
@@ -101,7 +101,7 @@ struct Renderer::Impl {
     if (!ctx) return;
     std::string ignored;
     ctx->makeCurrent(&ignored);
-    for (GpuMesh* m : {&box, &sphere, &capsule, &plane}) destroyMesh(*m);
+    for (GpuMesh* m : {&box, &boxCorner, &sphere, &capsule, &plane}) destroyMesh(*m);
     for (auto& kv : meshes) destroyMesh(kv.second);
     if (gl.DeleteBuffers) {
       gl.DeleteBuffers(1, &instanceVbo);
@@ -171,6 +171,7 @@ struct Renderer::Impl {
       return false;
 
     upload(makeBoxMesh(), box);
+    upload(makeBoxCornerMesh(), boxCorner);
     upload(makeSphereMesh(24, 14), sphere);
     upload(makeCapsuleMesh(24, 7), capsule);
     upload(makePlaneMesh(), plane);
@@ -570,8 +571,18 @@ struct Renderer::Impl {
       gl.PolygonOffset(1.5f, 3.f);
       shadowProgram.use();
       gl.UniformMatrix4fv(shadowProgram.uniform("uLightViewProj"), 1, GL_FALSE, lightVP.m);
-      for (size_t i = 0; i < groupsBeforeMarkers; ++i)
-        if (groups[i].castsShadow) drawGroup(groups[i]);
+      gl.Uniform3f(shadowProgram.uniform("uSunDir"), kSunDir.x, kSunDir.y, kSunDir.z);
+      const GLint boxCornerLoc = shadowProgram.uniform("uBoxCorner");
+      for (size_t i = 0; i < groupsBeforeMarkers; ++i) {
+        if (!groups[i].castsShadow) continue;
+        // Boxes: only the three faces turned to the sun (the ones culling would keep), from half
+        // the vertices; this pass is bound by vertex work.
+        DrawGroup g = groups[i];
+        const bool corner = g.mesh == &box;
+        if (corner) g.mesh = &boxCorner, g.cull = false;
+        gl.Uniform1i(boxCornerLoc, corner ? 1 : 0);
+        drawGroup(g);
+      }
       gl.Disable(GL_POLYGON_OFFSET_FILL);
       shadowMapEmpty = false;
     } else if (!shadowMapEmpty) {

@@ -357,6 +357,47 @@ TEST(Renderer, ShadowsOnlyDarkenTheGroundWhereTheyFall) {
   EXPECT_GT(same, 320 * 240 * 8 / 10) << "most of the picture is untouched by the shadow";
 }
 
+TEST(Renderer, TiltedBoxCastsTheSameShadowAsTheSameHull) {
+  // The shadow pass draws boxes from their three sun-facing faces (mirrored in the shader); a
+  // convex hull of the same box takes the general path. The camera sees the shadow on the ground
+  // but not the caster, so the two pictures must match, and show a shadow.
+  const float hx = 0.8f, hy = 0.4f, hz = 0.6f;
+  const float q[4] = {0.3f, 0.5f, 0.2f, 0.787401f};  // unit: 0.09 + 0.25 + 0.04 + 0.62
+  std::vector<float> corners;
+  for (int c = 0; c < 8; ++c) corners.insert(corners.end(), {c & 1 ? hx : -hx, c & 2 ? hy : -hy, c & 4 ? hz : -hz});
+  const std::vector<uint32_t> faces = {0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5, 0, 1, 5, 0, 5, 4,
+                                       2, 6, 7, 2, 7, 3, 0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6};
+  RendererOptions o, flat;
+  o.width = flat.width = 240, o.height = flat.height = 180;
+  flat.shadowMapSize = 0;
+  std::string error;
+  auto r = Renderer::create(o, &error);
+  auto noShadow = Renderer::create(flat, &error);
+  ASSERT_TRUE(r && noShadow) << error;
+  ASSERT_TRUE(r->registerMesh(7, corners, faces, &error)) << error;
+  ASSERT_TRUE(noShadow->registerMesh(7, corners, faces, &error)) << error;
+  std::vector<uint8_t> images[3];
+  for (int k = 0; k < 3; ++k) {
+    FrameInput f;
+    f.camera.automatic = false;
+    f.camera.fovYDegrees = 30.f;
+    const float eye[3] = {1.4f, 1.2f, 3.9f}, target[3] = {1.4f, 0.f, 0.9f};
+    for (int i = 0; i < 3; ++i) f.camera.eye[i] = eye[i], f.camera.target[i] = target[i];
+    f.instances.push_back(groundBox());
+    Instance caster = coloredBody(k == 0 ? ShapeKind::Box : ShapeKind::ConvexHull, 0.f, 2.5f, 0.f, 0.8f, 0.2f, 0.2f);
+    caster.halfExtents[0] = hx, caster.halfExtents[1] = hy, caster.halfExtents[2] = hz;
+    caster.meshId = 7;
+    for (int i = 0; i < 4; ++i) caster.orientation[i] = q[i];
+    f.instances.push_back(caster);
+    ASSERT_TRUE((k == 2 ? noShadow : r)->render(f, images[k], &error)) << error;
+  }
+  int shadowed = 0;
+  for (size_t i = 0; i < images[0].size(); i += 4)
+    shadowed += images[0][i] + 30 < images[2][i] && images[0][i + 1] + 30 < images[2][i + 1];
+  EXPECT_GT(shadowed, 300) << "the shadow is in view";
+  EXPECT_LE(differingPixels(images[0], images[1]), 12) << "box and hull cast the same shadow";
+}
+
 // Prints (does not assert) the frame time of the performance target: 2000 boxes, 1280x720,
 // shadows (1024 map) and 4x MSAA, with and without the overlay. Timings on a shared machine are noisy.
 TEST(RenderBenchmark, Stacks2000FrameTimePrinted) {
