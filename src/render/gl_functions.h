@@ -14,6 +14,7 @@ class GlContext;
 #define HAIF_GL_FUNCTIONS(X)                                                        \
   X(PFNGLGETERRORPROC, GetError, "glGetError")                                      \
   X(PFNGLGETSTRINGPROC, GetString, "glGetString")                                   \
+  X(PFNGLGETSTRINGIPROC, GetStringi, "glGetStringi")                                \
   X(PFNGLGETINTEGERVPROC, GetIntegerv, "glGetIntegerv")                             \
   X(PFNGLENABLEPROC, Enable, "glEnable")                                            \
   X(PFNGLDISABLEPROC, Disable, "glDisable")                                         \

@@ -28,7 +28,8 @@ namespace {
 constexpr int kInstanceFloats = 16;
 constexpr GLsizei kInstanceStride = kInstanceFloats * sizeof(float);
 constexpr float kPlaneHalfSize = 1000.f;
-constexpr int kSkyRows = 24;  // must match kRows in shaders/sky.vert
+constexpr int kSkyRows = 24;
+constexpr GLenum kPackInvertMesa = 0x8758;  // GL_PACK_INVERT_MESA (GL_MESA_pack_invert)  // must match kRows in shaders/sky.vert
 
 // Ordering of draw groups: bodies first (each group front to back), the ground after them, so
 // early depth testing skips most hidden pixels; fragment work dominates on llvmpipe.
@@ -83,7 +84,8 @@ struct Renderer::Impl {
   HiddenBoxFaces hiddenFaces;
   std::vector<BoxPose> boxPoses;      // boxes of this frame in draw order, for hiddenFaces
   std::vector<uint8_t> hiddenMasks;   // per entry of boxPoses
-  std::vector<uint8_t> readback;
+  std::vector<uint8_t> readback;  // bottom-up rows, unless packInvert
+  bool packInvert = false;        // GL_MESA_pack_invert: glReadPixels returns the top row first
   std::unique_ptr<TextRenderer> text;  // created on the first frame with the overlay enabled
   RenderPhaseTimes phases;
   std::chrono::steady_clock::time_point phaseStart;
@@ -232,7 +234,13 @@ struct Renderer::Impl {
       clearShadowMap();
     }
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
-    readback.resize(static_cast<size_t>(opt.width) * opt.height * 4);
+    GLint extensions = 0;
+    gl.GetIntegerv(GL_NUM_EXTENSIONS, &extensions);
+    for (GLint i = 0; i < extensions; ++i) {
+      const GLubyte* name = gl.GetStringi(GL_EXTENSIONS, static_cast<GLuint>(i));
+      if (name && std::strcmp(reinterpret_cast<const char*>(name), "GL_MESA_pack_invert") == 0) packInvert = true;
+    }
+    if (!packInvert) readback.resize(static_cast<size_t>(opt.width) * opt.height * 4);
     return checkGl("initialisation", error);
   }
 
@@ -673,15 +681,17 @@ struct Renderer::Impl {
     mark(&phases.resolve);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, readFbo);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl.ReadPixels(0, 0, opt.width, opt.height, GL_RGBA, GL_UNSIGNED_BYTE, readback.data());
-    if (!checkGl("rendering", error)) return false;
-    mark(&phases.readback);
-
     // GL row 0 is the bottom of the image; callers get the top row first.
     const size_t rowBytes = static_cast<size_t>(opt.width) * 4;
     out.resize(rowBytes * opt.height);
-    for (int y = 0; y < opt.height; ++y)
-      std::memcpy(out.data() + rowBytes * y, readback.data() + rowBytes * (opt.height - 1 - y), rowBytes);
+    if (packInvert) gl.PixelStorei(kPackInvertMesa, GL_TRUE);
+    gl.ReadPixels(0, 0, opt.width, opt.height, GL_RGBA, GL_UNSIGNED_BYTE, packInvert ? out.data() : readback.data());
+    if (packInvert) gl.PixelStorei(kPackInvertMesa, GL_FALSE);
+    if (!checkGl("rendering", error)) return false;
+    mark(&phases.readback);
+    if (!packInvert)
+      for (int y = 0; y < opt.height; ++y)
+        std::memcpy(out.data() + rowBytes * y, readback.data() + rowBytes * (opt.height - 1 - y), rowBytes);
     mark(&phases.flip);
 
     if (f.overlay.enabled) {
