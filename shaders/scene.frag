@@ -8,14 +8,21 @@
 #ifndef SURFACE
 #define SURFACE 0
 #endif
+#ifndef RECEIVES_SHADOW  // 0: a ground variant for where no shadow can fall
+#define RECEIVES_SHADOW 1
+#endif
 
 in vec3 vWorldPos;
 in vec3 vNormal;
 in vec3 vColor;
 in float vEmissive;
-in vec4 vLightPos;
+in vec3 vShadowCoord;
 in vec3 vUnitPos;
 flat in vec3 vScale;
+#if SURFACE == 1
+in vec3 vAmbient;  // per vertex: ground faces are flat
+in vec3 vSunLit;   // sun * max(n.l, 0)
+#endif
 #if SURFACE == 2
 in vec3 vBase;     // albedo * ambient (per vertex: box faces are flat)
 in vec3 vSunLit;   // albedo * sun * max(n.l, 0)
@@ -24,8 +31,6 @@ in float vFog;     // fog amount
 #endif
 
 uniform sampler2DShadow uShadowMap;
-uniform float uShadowTexel;     // 1 / shadow map size
-uniform int uShadowsOn;         // 0 when nothing casts
 uniform vec3 uSunDir;           // unit vector towards the sun
 uniform vec3 uSunColor;         // linear radiance
 uniform vec3 uSkyAmbient;       // ambient from above
@@ -39,14 +44,12 @@ uniform float uGridFade;        // distance where the grid has faded out
 
 out vec4 fragColor;
 
-float shadowFactor() {
-  if (uShadowsOn == 0) return 1.0;
-  vec3 p = vLightPos.xyz / vLightPos.w * 0.5 + 0.5;
-  if (p.x <= 0.0 || p.x >= 1.0 || p.y <= 0.0 || p.y >= 1.0 || p.z >= 1.0) return 1.0;
-  // One hardware-filtered comparison = bilinear 2x2 PCF. Each extra tap costs several ms per
-  // frame on llvmpipe, so the softness comes from filtering, not from many taps.
-  return texture(uShadowMap, p);
-}
+// One hardware-filtered comparison = bilinear 2x2 PCF. Each extra tap costs several ms per frame
+// on llvmpipe, so the softness comes from filtering, not from many taps. No branches (llvmpipe
+// pays for both sides): outside the map the border (1.0) lights, the reference stays below 1 so
+// points past the sun's far plane compare like the farthest depth, and without casters the
+// renderer fills the map with 1.0.
+float shadowFactor() { return texture(uShadowMap, vec3(vShadowCoord.xy, min(vShadowCoord.z, 0.99999))); }
 
 // Anti-aliased grid: minor lines every uGridSpacing, major lines every 10. Derivatives are taken
 // once; lines denser than a few pixels fade out instead of turning into moire.
@@ -88,36 +91,39 @@ void main() {
   lit = mix(lit, uFogColor, vFog * 0.5);
   fragColor = vec4(encodeSrgb(lit), 1.0);
 }
+#elif SURFACE == 1
+// Ground: per-pixel grid, shadow and fog on per-vertex lighting; matte.
+void main() {
+  vec3 toEye = vWorldPos - uEye;
+  float dist2 = dot(toEye, toEye);
+  float fade = 1.0 - smoothstep(uGridFade * 0.35, uGridFade, sqrt(dist2));
+  vec3 albedo = uGroundColor * (1.0 - gridLines(vWorldPos.xz / uGridSpacing) * fade);
+#if RECEIVES_SHADOW
+  vec3 lit = albedo * (vAmbient + vSunLit * shadowFactor());
 #else
+  vec3 lit = albedo * (vAmbient + vSunLit);
+#endif
+  // Gaussian fog: the scene itself stays clear, the far ground melts into the horizon.
+  float fog = 1.0 - exp(-dist2 / (uFogDistance * uFogDistance));
+  fragColor = vec4(encodeSrgb(mix(lit, uFogColor, fog)), 1.0);
+}
+#else
+// Bodies other than boxes: per-pixel normal, specular and emissive markers.
 void main() {
   vec3 n = normalize(vNormal);
   if (!gl_FrontFacing) n = -n;  // open triangle meshes seen from behind
-  vec3 albedo = vColor;
   float dist = length(vWorldPos - uEye);
-
-#if SURFACE == 1
-  vec2 c = vWorldPos.xz / uGridSpacing;
-  float fade = 1.0 - smoothstep(uGridFade * 0.35, uGridFade, dist);
-  albedo = uGroundColor * (1.0 - gridLines(c) * fade);
-#endif
-
   float ndl = max(dot(n, uSunDir), 0.0);
   float shadow = ndl > 0.0 ? shadowFactor() : 0.0;
   vec3 ambient = mix(uGroundAmbient, uSkyAmbient, n.y * 0.5 + 0.5);
-#if SURFACE == 1
-  vec3 lit = albedo * (ambient + uSunColor * ndl * shadow);  // the ground is matte
-#else
   vec3 h = normalize(uSunDir + normalize(uEye - vWorldPos));
   float nh = max(dot(n, h), 0.0);
   float nh8 = nh * nh; nh8 *= nh8; nh8 *= nh8;  // (n.h)^48 by squaring, cheaper than pow()
   float spec = nh8 * nh8 * nh8 * nh8 * nh8 * nh8 * 0.12;
-  vec3 lit = albedo * (ambient + uSunColor * ndl * shadow) + uSunColor * spec * shadow;
+  vec3 lit = vColor * (ambient + uSunColor * ndl * shadow) + uSunColor * spec * shadow;
   lit = mix(lit, vColor, vEmissive);
-#endif
-
-  // Gaussian fog: the scene itself stays clear, the far ground melts into the horizon.
   float fog = 1.0 - exp(-(dist * dist) / (uFogDistance * uFogDistance));
-  lit = mix(lit, uFogColor, fog * (SURFACE == 1 ? 1.0 : 0.5));
+  lit = mix(lit, uFogColor, fog * 0.5);
   fragColor = vec4(encodeSrgb(lit), 1.0);
 }
 #endif

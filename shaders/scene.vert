@@ -10,6 +10,7 @@ layout(location = 4) in vec4 iQuat;      // orientation quaternion (x, y, z, w)
 layout(location = 5) in vec3 iScale;     // half extents / radius
 layout(location = 6) in float iStretch;  // capsule half height
 layout(location = 7) in vec4 iColor;     // linear rgb, a = emissive amount (markers)
+layout(location = 8) in float iHiddenFaces;  // box faces to drop (bit mask as a float), 0 otherwise
 
 uniform mat4 uViewProj;
 uniform mat4 uLightViewProj;
@@ -19,12 +20,22 @@ out vec3 vWorldPos;
 out vec3 vNormal;
 out vec3 vColor;
 out float vEmissive;
-out vec4 vLightPos;
+out vec3 vShadowCoord;   // shadow map coordinates and depth in [0, 1] (the sun's view is orthographic)
 out vec3 vUnitPos;       // position on the unit shape, for box edge lines
 flat out vec3 vScale;
 
 #ifndef SURFACE
 #define SURFACE 0
+#endif
+#if SURFACE == 1
+// The ground's faces are flat too: its lighting but for the shadow and the grid is per vertex.
+uniform vec3 uSunDir;
+uniform vec3 uSunColor;
+uniform vec3 uSkyAmbient;
+uniform vec3 uGroundAmbient;
+uniform vec3 uEye;
+out vec3 vAmbient;
+out vec3 vSunLit;  // sun * max(n.l, 0)
 #endif
 #if SURFACE == 2
 // Boxes are lit per vertex (flat faces, distant sun: exact but for the tiny change of the view
@@ -46,6 +57,16 @@ vec3 rotate(vec4 q, vec3 v) {
   return v + q.w * t + cross(q.xyz, t);
 }
 
+// Box faces the renderer found inside a neighbouring box (bit 2 * axis + (normal > 0)) are sent
+// outside the clip volume; all corners of a face move together, so its triangles are dropped whole.
+bool hiddenFace(vec3 normal) {
+  if (iHiddenFaces < 0.5) return false;
+  vec3 a = abs(normal);
+  int axis = a.x > 0.5 ? 0 : (a.y > 0.5 ? 1 : 2);
+  int bit = 2 * axis + (normal[axis] > 0.0 ? 1 : 0);
+  return ((int(iHiddenFaces) >> bit) & 1) != 0;
+}
+
 void main() {
   vec3 local = aPos * iScale + vec3(0.0, aCapSide * iStretch, 0.0);
   vec3 world = iPos + rotate(iQuat, local);
@@ -55,10 +76,15 @@ void main() {
   vNormal = n;
   vColor = iColor.rgb;
   vEmissive = iColor.a;
-  vLightPos = uLightViewProj * vec4(world + n * uShadowNormalOffset, 1.0);
+  vShadowCoord = (uLightViewProj * vec4(world + n * uShadowNormalOffset, 1.0)).xyz * 0.5 + 0.5;
   vUnitPos = aPos;
   vScale = iScale;
-  gl_Position = uViewProj * vec4(world, 1.0);
+  gl_Position = hiddenFace(aNormal) ? vec4(2.0, 2.0, 2.0, 1.0) : uViewProj * vec4(world, 1.0);
+#if SURFACE == 1
+  vec3 nf = dot(n, uEye - world) < 0.0 ? -n : n;  // the two-sided plane seen from below
+  vAmbient = mix(uGroundAmbient, uSkyAmbient, nf.y * 0.5 + 0.5);
+  vSunLit = uSunColor * max(dot(nf, uSunDir), 0.0);
+#endif
 #if SURFACE == 2
   float ndl = max(dot(n, uSunDir), 0.0);
   vec3 ambient = mix(uGroundAmbient, uSkyAmbient, n.y * 0.5 + 0.5);

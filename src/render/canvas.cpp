@@ -28,10 +28,12 @@ void Canvas::blend(int x, int y, Rgba c, float coverage) {
   const float a = std::clamp(coverage, 0.f, 1.f) * (c.a / 255.f);
   if (a <= 0.f) return;
   uint8_t* p = rgba_ + 4 * (static_cast<size_t>(y) * width_ + x);
-  p[0] = static_cast<uint8_t>(std::lround(p[0] + (c.r - p[0]) * a));
-  p[1] = static_cast<uint8_t>(std::lround(p[1] + (c.g - p[1]) * a));
-  p[2] = static_cast<uint8_t>(std::lround(p[2] + (c.b - p[2]) * a));
-  p[3] = static_cast<uint8_t>(std::lround(p[3] + (255 - p[3]) * a));
+  // Each value lies between two bytes, so +0.5 and truncation round it (lround is a libm call,
+  // and the overlay blends every pixel of its panel each frame).
+  p[0] = static_cast<uint8_t>(p[0] + (c.r - p[0]) * a + 0.5f);
+  p[1] = static_cast<uint8_t>(p[1] + (c.g - p[1]) * a + 0.5f);
+  p[2] = static_cast<uint8_t>(p[2] + (c.b - p[2]) * a + 0.5f);
+  p[3] = static_cast<uint8_t>(p[3] + (255 - p[3]) * a + 0.5f);
 }
 
 void Canvas::fillRect(float x0, float y0, float x1, float y1, Rgba c) {
@@ -45,7 +47,24 @@ void Canvas::fillRect(float x0, float y0, float x1, float y1, Rgba c) {
     const float cy = std::min(y1, y + 1.f) - std::max(y0, static_cast<float>(y));
     for (int x = ix0; x < ix1; ++x) {
       const float cx = std::min(x1, x + 1.f) - std::max(x0, static_cast<float>(x));
-      blend(x, y, c, cx * cy);
+      if (cx < 1.f) {
+        blend(x, y, c, cx * cy);
+        continue;
+      }
+      // Whole columns: the same arithmetic as blend() with the coverage worked out once.
+      int xe = x;
+      while (xe + 1 < ix1 && std::min(x1, xe + 2.f) - static_cast<float>(xe + 1) >= 1.f) ++xe;
+      const float a = std::clamp(cy, 0.f, 1.f) * (c.a / 255.f);
+      if (a > 0.f) {
+        uint8_t* p = rgba_ + 4 * (static_cast<size_t>(y) * width_ + x);
+        for (int k = x; k <= xe; ++k, p += 4) {
+          p[0] = static_cast<uint8_t>(p[0] + (c.r - p[0]) * a + 0.5f);
+          p[1] = static_cast<uint8_t>(p[1] + (c.g - p[1]) * a + 0.5f);
+          p[2] = static_cast<uint8_t>(p[2] + (c.b - p[2]) * a + 0.5f);
+          p[3] = static_cast<uint8_t>(p[3] + (255 - p[3]) * a + 0.5f);
+        }
+      }
+      x = xe;
     }
   }
 }

@@ -14,10 +14,12 @@ class GlContext;
 #define HAIF_GL_FUNCTIONS(X)                                                        \
   X(PFNGLGETERRORPROC, GetError, "glGetError")                                      \
   X(PFNGLGETSTRINGPROC, GetString, "glGetString")                                   \
+  X(PFNGLGETSTRINGIPROC, GetStringi, "glGetStringi")                                \
   X(PFNGLGETINTEGERVPROC, GetIntegerv, "glGetIntegerv")                             \
   X(PFNGLENABLEPROC, Enable, "glEnable")                                            \
   X(PFNGLDISABLEPROC, Disable, "glDisable")                                         \
   X(PFNGLVIEWPORTPROC, Viewport, "glViewport")                                      \
+  X(PFNGLSCISSORPROC, Scissor, "glScissor")                                         \
   X(PFNGLCLEARPROC, Clear, "glClear")                                               \
   X(PFNGLCLEARCOLORPROC, ClearColor, "glClearColor")                                \
   X(PFNGLCLEARDEPTHPROC, ClearDepth, "glClearDepth")                                \

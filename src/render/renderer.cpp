@@ -9,27 +9,33 @@
 
 #include "render/gl_context.h"
 #include "render/gl_functions.h"
+#include "render/hidden_box_faces.h"
 #include "render/mesh_builder.h"
 #include "render/overlay.h"
 #include "render/palette.h"
 #include "render/png_io.h"
 #include "render/shader_program.h"
+#include "render/shadow_footprint.h"
+#include "render/sky_extent.h"
 #include "render/text_renderer.h"
 #include "render/view_setup.h"
 
 namespace haif::render {
 namespace {
 
-// Per-instance record: position 3, quaternion 4, scale 3, capsule stretch 1, colour+emissive 4.
-constexpr int kInstanceFloats = 15;
+// Per-instance record: position 3, quaternion 4, scale 3, capsule stretch 1, colour+emissive 4,
+// hidden box faces 1 (a HiddenBoxFaces mask as a float; 0 for other shapes).
+constexpr int kInstanceFloats = 16;
 constexpr GLsizei kInstanceStride = kInstanceFloats * sizeof(float);
 constexpr float kPlaneHalfSize = 1000.f;
-constexpr int kSkyRows = 24;  // must match kRows in shaders/sky.vert
+constexpr int kSkyRows = 24;
+constexpr GLenum kPackInvertMesa = 0x8758;  // GL_PACK_INVERT_MESA (GL_MESA_pack_invert)  // must match kRows in shaders/sky.vert
 
 // Ordering of draw groups: bodies first (each group front to back), the ground after them, so
 // early depth testing skips most hidden pixels; fragment work dominates on llvmpipe.
 enum GroupKind : uint32_t { kBox, kSphere, kCapsule, kHull, kTriMesh, kGroundBox, kGroundPlane };
-enum Surface : int { kSurfaceBody = 0, kSurfaceGround = 1, kSurfaceBox = 2 };
+// kSurfaceGroundUnshadowed: the ground where no shadow can fall (no shadow map lookup).
+enum Surface : int { kSurfaceBody = 0, kSurfaceGround = 1, kSurfaceBox = 2, kSurfaceGroundUnshadowed = 3 };
 
 struct GpuMesh {
   GLuint vao = 0, vbo = 0, ibo = 0;
@@ -61,19 +67,25 @@ struct Renderer::Impl {
   int samples = 1;
   std::unique_ptr<GlContext> ctx;
   GlFunctions gl;
-  ShaderProgram sceneProgram[3], shadowProgram, skyProgram;  // scene: one variant per Surface
-  GpuMesh box, sphere, capsule, plane;
+  ShaderProgram sceneProgram[4], shadowProgram, skyProgram;  // scene: one variant per Surface
+  GpuMesh box, boxCorner, sphere, capsule, plane;  // boxCorner: the shadow pass's boxes
   std::unordered_map<uint32_t, GpuMesh> meshes;
   GLuint instanceVbo = 0;
   size_t instanceCapacity = 0;  // bytes
   GLuint msaaFbo = 0, msaaColor = 0, msaaDepth = 0, resolveFbo = 0, resolveColor = 0;
   GLuint shadowFbo = 0, shadowTex = 0, emptyVao = 0;
+  bool shadowMapEmpty = false;  // the map holds only the far depth (cleared while nothing casts)
   // Reused every frame so steady-state rendering does not allocate.
   std::vector<float> staging;
   std::vector<SortItem> order;
   std::vector<FramingSphere> framing;
   std::vector<DrawGroup> groups;
-  std::vector<uint8_t> readback;
+  std::vector<GroundFace> groundFaces;  // for skyStartNdc
+  HiddenBoxFaces hiddenFaces;
+  std::vector<BoxPose> boxPoses;      // boxes of this frame in draw order, for hiddenFaces
+  std::vector<uint8_t> hiddenMasks;   // per entry of boxPoses
+  std::vector<uint8_t> readback;  // bottom-up rows, unless packInvert
+  bool packInvert = false;        // GL_MESA_pack_invert: glReadPixels returns the top row first
   std::unique_ptr<TextRenderer> text;  // created on the first frame with the overlay enabled
   RenderPhaseTimes phases;
   std::chrono::steady_clock::time_point phaseStart;
@@ -91,7 +103,7 @@ struct Renderer::Impl {
     if (!ctx) return;
     std::string ignored;
     ctx->makeCurrent(&ignored);
-    for (GpuMesh* m : {&box, &sphere, &capsule, &plane}) destroyMesh(*m);
+    for (GpuMesh* m : {&box, &boxCorner, &sphere, &capsule, &plane}) destroyMesh(*m);
     for (auto& kv : meshes) destroyMesh(kv.second);
     if (gl.DeleteBuffers) {
       gl.DeleteBuffers(1, &instanceVbo);
@@ -131,7 +143,7 @@ struct Renderer::Impl {
     gl.EnableVertexAttribArray(2);
     gl.VertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(6 * sizeof(float)));
     // Instance attributes: enabled and stepped once per instance; their pointers are set per draw.
-    for (GLuint a = 3; a <= 7; ++a) {
+    for (GLuint a = 3; a <= 8; ++a) {
       gl.EnableVertexAttribArray(a);
       gl.VertexAttribDivisor(a, 1);
     }
@@ -150,15 +162,18 @@ struct Renderer::Impl {
     }
     ctx = createOsMesaContext(error);
     if (!ctx || !gl.load(*ctx, error)) return false;
-    for (int surface : {kSurfaceBody, kSurfaceGround, kSurfaceBox})
-      if (!sceneProgram[surface].load(gl, opt.shaderDir, "scene.vert", "scene.frag", error,
-                                      "#define SURFACE " + std::to_string(surface) + "\n"))
-        return false;
+    for (int surface : {kSurfaceBody, kSurfaceGround, kSurfaceBox, kSurfaceGroundUnshadowed}) {
+      const std::string defines = surface == kSurfaceGroundUnshadowed
+                                      ? "#define SURFACE 1\n#define RECEIVES_SHADOW 0\n"
+                                      : "#define SURFACE " + std::to_string(surface) + "\n";
+      if (!sceneProgram[surface].load(gl, opt.shaderDir, "scene.vert", "scene.frag", error, defines)) return false;
+    }
     if (!shadowProgram.load(gl, opt.shaderDir, "shadow.vert", "shadow.frag", error) ||
         !skyProgram.load(gl, opt.shaderDir, "sky.vert", "sky.frag", error))
       return false;
 
     upload(makeBoxMesh(), box);
+    upload(makeBoxCornerMesh(), boxCorner);
     upload(makeSphereMesh(24, 14), sphere);
     upload(makeCapsuleMesh(24, 7), capsule);
     upload(makePlaneMesh(), plane);
@@ -192,12 +207,15 @@ struct Renderer::Impl {
       if (!checkFramebuffer("resolve", error)) return false;
     }
 
-    if (opt.shadowMapSize > 0) {
-      opt.shadowMapSize = std::min(opt.shadowMapSize, 8192);
+    {
+      // Always present (1 texel without shadows): scene.frag samples it unconditionally, and a
+      // map holding 1.0 everywhere lights every point.
+      opt.shadowMapSize = std::clamp(opt.shadowMapSize, 0, 8192);
+      const int side = std::max(opt.shadowMapSize, 1);
       gl.GenTextures(1, &shadowTex);
       gl.BindTexture(GL_TEXTURE_2D, shadowTex);
-      gl.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, opt.shadowMapSize, opt.shadowMapSize, 0,
-                    GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, nullptr);
+      gl.TexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, side, side, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT,
+                    nullptr);
       // Linear filtering + compare mode: each tap is already a 2x2 bilinear PCF.
       gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
       gl.TexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -213,10 +231,27 @@ struct Renderer::Impl {
       gl.DrawBuffer(GL_NONE);
       gl.ReadBuffer(GL_NONE);
       if (!checkFramebuffer("shadow", error)) return false;
+      clearShadowMap();
     }
     gl.BindFramebuffer(GL_FRAMEBUFFER, 0);
-    readback.resize(static_cast<size_t>(opt.width) * opt.height * 4);
+    GLint extensions = 0;
+    gl.GetIntegerv(GL_NUM_EXTENSIONS, &extensions);
+    for (GLint i = 0; i < extensions; ++i) {
+      const GLubyte* name = gl.GetStringi(GL_EXTENSIONS, static_cast<GLuint>(i));
+      if (name && std::strcmp(reinterpret_cast<const char*>(name), "GL_MESA_pack_invert") == 0) packInvert = true;
+    }
+    if (!packInvert) readback.resize(static_cast<size_t>(opt.width) * opt.height * 4);
     return checkGl("initialisation", error);
+  }
+
+  // Fills the shadow map with the far depth (nothing casts); needs shadowFbo bound.
+  void clearShadowMap() {
+    const int side = std::max(opt.shadowMapSize, 1);
+    gl.Viewport(0, 0, side, side);
+    gl.DepthMask(GL_TRUE);
+    gl.ClearDepth(1.0);
+    gl.Clear(GL_DEPTH_BUFFER_BIT);
+    shadowMapEmpty = true;
   }
 
   bool checkFramebuffer(const char* what, std::string* error) {
@@ -247,15 +282,41 @@ struct Renderer::Impl {
 
   static bool finite3(const float* v) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
-  void pushInstance(Vec3 p, const float* q, Vec3 scale, float stretch, LinearColor c, float emissive) {
-    float qn[4] = {q[0], q[1], q[2], q[3]};
+  // Unit quaternion from q; identity for a zero or non-finite one.
+  static void normalizedQuat(const float* q, float* qn) {
+    for (int k = 0; k < 4; ++k) qn[k] = q[k];
     const float len = std::sqrt(qn[0] * qn[0] + qn[1] * qn[1] + qn[2] * qn[2] + qn[3] * qn[3]);
     if (!(len > 1e-12f) || !std::isfinite(len))
       qn[0] = qn[1] = qn[2] = 0.f, qn[3] = 1.f;
     else
-      for (float& v : qn) v /= len;
+      for (int k = 0; k < 4; ++k) qn[k] /= len;
+  }
+
+  void pushInstance(Vec3 p, const float* q, Vec3 scale, float stretch, LinearColor c, float emissive,
+                    uint8_t hidden = 0) {
+    float qn[4];
+    normalizedQuat(q, qn);
     staging.insert(staging.end(), {p.x, p.y, p.z, qn[0], qn[1], qn[2], qn[3], scale.x, scale.y, scale.z,
-                                   stretch, c.r, c.g, c.b, emissive});
+                                   stretch, c.r, c.g, c.b, emissive, static_cast<float>(hidden)});
+  }
+
+  // Hidden-face masks for the boxes of the sorted order (ground boxes included: they cover the
+  // bottoms of the boxes resting on them), in the order buildInstances pushes them.
+  void findHiddenBoxFaces(const FrameInput& f) {
+    boxPoses.clear();
+    for (const SortItem& s : order) {
+      if (s.kind != kBox && s.kind != kGroundBox) continue;
+      const Instance& in = f.instances[s.index];
+      BoxPose b;
+      b.center = {in.position[0], in.position[1], in.position[2]};
+      normalizedQuat(in.orientation, b.orientation);
+      b.half = {in.halfExtents[0], in.halfExtents[1], in.halfExtents[2]};
+      boxPoses.push_back(b);
+    }
+    if (opt.cullHiddenBoxFaces)
+      hiddenFaces.find(boxPoses, hiddenMasks);
+    else
+      hiddenMasks.assign(boxPoses.size(), 0);
   }
 
   size_t instanceCount() const { return staging.size() / kInstanceFloats; }
@@ -323,15 +384,19 @@ struct Renderer::Impl {
       return a.kind != b.kind ? a.kind < b.kind : a.meshId != b.meshId ? a.meshId < b.meshId : a.depth < b.depth;
     });
 
-    size_t groupStart = 0;
+    findHiddenBoxFaces(f);
+    groundFaces.clear();
+    size_t groupStart = 0, boxIndex = 0;
     for (size_t k = 0; k < order.size(); ++k) {
       const SortItem& s = order[k];
       const Instance& in = f.instances[s.index];
       const Vec3 p{in.position[0], in.position[1], in.position[2]};
       const LinearColor c = instanceColor(in, f.mode);
+      if (s.kind == kGroundBox || s.kind == kGroundPlane) addGroundFace(in, s.kind == kGroundBox);
       switch (s.kind) {
         case kGroundBox: case kBox:
-          pushInstance(p, in.orientation, {in.halfExtents[0], in.halfExtents[1], in.halfExtents[2]}, 0.f, c, 0.f);
+          pushInstance(p, in.orientation, {in.halfExtents[0], in.halfExtents[1], in.halfExtents[2]}, 0.f, c, 0.f,
+                       hiddenMasks[boxIndex++]);
           break;
         case kGroundPlane: pushInstance(p, in.orientation, {kPlaneHalfSize, 1.f, kPlaneHalfSize}, 0.f, c, 0.f); break;
         case kSphere: pushInstance(p, in.orientation, {in.radius, in.radius, in.radius}, 0.f, c, 0.f); break;
@@ -352,6 +417,20 @@ struct Renderer::Impl {
       }
       groupStart = instanceCount();
     }
+  }
+
+  // The face the ground is seen by: a ground box's local +y face, or the plane.
+  void addGroundFace(const Instance& in, bool isBox) {
+    float q[4];
+    normalizedQuat(in.orientation, q);
+    GroundFace g;
+    g.normal = rotate(q, {0.f, 1.f, 0.f});
+    g.axisU = rotate(q, {1.f, 0.f, 0.f});
+    g.axisV = rotate(q, {0.f, 0.f, 1.f});
+    g.center = Vec3{in.position[0], in.position[1], in.position[2]} + g.normal * (isBox ? in.halfExtents[1] : 0.f);
+    g.halfU = isBox ? in.halfExtents[0] : kPlaneHalfSize;
+    g.halfV = isBox ? in.halfExtents[2] : kPlaneHalfSize;
+    groundFaces.push_back(g);
   }
 
   void buildContactMarkers(const FrameInput& f, float meanRadius) {
@@ -398,12 +477,39 @@ struct Renderer::Impl {
     gl.VertexAttribPointer(5, 3, GL_FLOAT, GL_FALSE, kInstanceStride, at(7));
     gl.VertexAttribPointer(6, 1, GL_FLOAT, GL_FALSE, kInstanceStride, at(10));
     gl.VertexAttribPointer(7, 4, GL_FLOAT, GL_FALSE, kInstanceStride, at(11));
+    gl.VertexAttribPointer(8, 1, GL_FLOAT, GL_FALSE, kInstanceStride, at(15));
     if (g.cull)
       gl.Enable(GL_CULL_FACE);
     else
       gl.Disable(GL_CULL_FACE);
     gl.DrawElementsInstanced(GL_TRIANGLES, g.mesh->indexCount, GL_UNSIGNED_INT, nullptr,
                              static_cast<GLsizei>(g.count));
+  }
+
+  // A ground group: the shadowed variant inside `shade`, the unshadowed one in up to four bands
+  // around it (scissored, so each pixel is drawn by exactly one of them).
+  void drawGroundGroup(const DrawGroup& g, const PixelRect& shade) {
+    const int w = opt.width, h = opt.height;
+    if (shade.empty()) {
+      sceneProgram[kSurfaceGroundUnshadowed].use();
+      drawGroup(g);
+      return;
+    }
+    gl.Enable(GL_SCISSOR_TEST);
+    sceneProgram[kSurfaceGround].use();
+    gl.Scissor(shade.x0, shade.y0, shade.x1 - shade.x0, shade.y1 - shade.y0);
+    drawGroup(g);
+    sceneProgram[kSurfaceGroundUnshadowed].use();
+    const PixelRect bands[4] = {{0, 0, w, shade.y0},
+                                {0, shade.y1, w, h},
+                                {0, shade.y0, shade.x0, shade.y1},
+                                {shade.x1, shade.y0, w, shade.y1}};
+    for (const PixelRect& b : bands) {
+      if (b.empty()) continue;
+      gl.Scissor(b.x0, b.y0, b.x1 - b.x0, b.y1 - b.y0);
+      drawGroup(g);
+    }
+    gl.Disable(GL_SCISSOR_TEST);
   }
 
   // Orthographic sun view fitted to the casters' box as seen from the sun (tighter than their
@@ -473,9 +579,23 @@ struct Renderer::Impl {
       gl.PolygonOffset(1.5f, 3.f);
       shadowProgram.use();
       gl.UniformMatrix4fv(shadowProgram.uniform("uLightViewProj"), 1, GL_FALSE, lightVP.m);
-      for (size_t i = 0; i < groupsBeforeMarkers; ++i)
-        if (groups[i].castsShadow) drawGroup(groups[i]);
+      gl.Uniform3f(shadowProgram.uniform("uSunDir"), kSunDir.x, kSunDir.y, kSunDir.z);
+      const GLint boxCornerLoc = shadowProgram.uniform("uBoxCorner");
+      for (size_t i = 0; i < groupsBeforeMarkers; ++i) {
+        if (!groups[i].castsShadow) continue;
+        // Boxes: only the three faces turned to the sun (the ones culling would keep), from half
+        // the vertices; this pass is bound by vertex work.
+        DrawGroup g = groups[i];
+        const bool corner = g.mesh == &box;
+        if (corner) g.mesh = &boxCorner, g.cull = false;
+        gl.Uniform1i(boxCornerLoc, corner ? 1 : 0);
+        drawGroup(g);
+      }
       gl.Disable(GL_POLYGON_OFFSET_FILL);
+      shadowMapEmpty = false;
+    } else if (!shadowMapEmpty) {
+      gl.BindFramebuffer(GL_FRAMEBUFFER, shadowFbo);
+      clearShadowMap();
     }
     mark(&phases.shadow);
 
@@ -493,8 +613,6 @@ struct Renderer::Impl {
       gl.UniformMatrix4fv(sp.uniform("uLightViewProj"), 1, GL_FALSE, lightVP.m);
       gl.Uniform1f(sp.uniform("uShadowNormalOffset"), 1.5f * texelWorld);
       gl.Uniform1i(sp.uniform("uShadowMap"), 0);
-      gl.Uniform1f(sp.uniform("uShadowTexel"), opt.shadowMapSize > 0 ? 1.f / opt.shadowMapSize : 0.f);
-      gl.Uniform1i(sp.uniform("uShadowsOn"), shadows ? 1 : 0);
       gl.Uniform3f(sp.uniform("uSunDir"), kSunDir.x, kSunDir.y, kSunDir.z);
       gl.Uniform3f(sp.uniform("uSunColor"), 1.25f, 1.18f, 1.05f);
       gl.Uniform3f(sp.uniform("uSkyAmbient"), 0.30f, 0.36f, 0.46f);
@@ -508,8 +626,25 @@ struct Renderer::Impl {
     }
     gl.ActiveTexture(GL_TEXTURE0);
     gl.BindTexture(GL_TEXTURE_2D, shadowTex);
+    // The ground gets the shadow lookup only inside the rectangle where shadows can fall.
+    PixelRect shade{0, 0, opt.width, opt.height};
+    if (shadows) {
+      PixelRect u{opt.width, opt.height, 0, 0};
+      for (const GroundFace& face : groundFaces) {
+        const PixelRect r = groundShadowRect(view, opt.width, opt.height, bounds, kSunDir, face, 6.f * texelWorld);
+        u = {std::min(u.x0, r.x0), std::min(u.y0, r.y0), std::max(u.x1, r.x1), std::max(u.y1, r.y1)};
+      }
+      shade = u;
+    } else {
+      shade = PixelRect{};
+    }
     int bound = -1;
     for (const DrawGroup& g : groups) {
+      if (g.surface == kSurfaceGround) {
+        drawGroundGroup(g, shade);
+        bound = -1;
+        continue;
+      }
       if (g.surface != bound) sceneProgram[g.surface].use(), bound = g.surface;
       drawGroup(g);
     }
@@ -526,8 +661,10 @@ struct Renderer::Impl {
     gl.Uniform2f(skyProgram.uniform("uTanHalfFov"), view.tanHalfFovY * view.aspect, view.tanHalfFovY);
     gl.Uniform3f(skyProgram.uniform("uHorizon"), horizon.r, horizon.g, horizon.b);
     gl.Uniform3f(skyProgram.uniform("uZenith"), zenith.r, zenith.g, zenith.b);
+    const float skyBottom = skyStartNdc(view, opt.height, groundFaces);
+    gl.Uniform1f(skyProgram.uniform("uBottom"), skyBottom);
     gl.BindVertexArray(emptyVao);
-    gl.DrawArrays(GL_TRIANGLE_STRIP, 0, 2 * (kSkyRows + 1));
+    if (skyBottom < 1.f) gl.DrawArrays(GL_TRIANGLE_STRIP, 0, 2 * (kSkyRows + 1));
     gl.DepthMask(GL_TRUE);
     gl.DepthFunc(GL_LESS);
     gl.BindVertexArray(0);
@@ -544,15 +681,17 @@ struct Renderer::Impl {
     mark(&phases.resolve);
     gl.BindFramebuffer(GL_READ_FRAMEBUFFER, readFbo);
     gl.PixelStorei(GL_PACK_ALIGNMENT, 1);
-    gl.ReadPixels(0, 0, opt.width, opt.height, GL_RGBA, GL_UNSIGNED_BYTE, readback.data());
-    if (!checkGl("rendering", error)) return false;
-    mark(&phases.readback);
-
     // GL row 0 is the bottom of the image; callers get the top row first.
     const size_t rowBytes = static_cast<size_t>(opt.width) * 4;
     out.resize(rowBytes * opt.height);
-    for (int y = 0; y < opt.height; ++y)
-      std::memcpy(out.data() + rowBytes * y, readback.data() + rowBytes * (opt.height - 1 - y), rowBytes);
+    if (packInvert) gl.PixelStorei(kPackInvertMesa, GL_TRUE);
+    gl.ReadPixels(0, 0, opt.width, opt.height, GL_RGBA, GL_UNSIGNED_BYTE, packInvert ? out.data() : readback.data());
+    if (packInvert) gl.PixelStorei(kPackInvertMesa, GL_FALSE);
+    if (!checkGl("rendering", error)) return false;
+    mark(&phases.readback);
+    if (!packInvert)
+      for (int y = 0; y < opt.height; ++y)
+        std::memcpy(out.data() + rowBytes * y, readback.data() + rowBytes * (opt.height - 1 - y), rowBytes);
     mark(&phases.flip);
 
     if (f.overlay.enabled) {
