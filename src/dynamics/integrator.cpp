@@ -2,6 +2,41 @@
 
 namespace haif {
 
+namespace {
+
+Mat3 skew(const Vec3& a) {
+  Mat3 m;
+  m << 0.0f, -a.z(), a.y(), a.z(), 0.0f, -a.x(), -a.y(), a.x(), 0.0f;
+  return m;
+}
+
+// Newton iterations for the midpoint angular velocity; it converges quadratically from the predictor,
+// so two or three suffice; the stop is relative to |w|.
+constexpr int kMidpointIterations = 4;
+constexpr float kMidpointTolerance2 = 1e-12f;
+
+// Implicit midpoint rule on Euler's equations in the body frame, dL/dt = L x w with L = I w:
+// L1 = L0 + dt Lm x wm, Lm = (L0 + L1) / 2 = I wm. Returns wm, found by Newton on
+// f(wm) = I wm - (dt/2) (I wm) x wm - L0 = 0. The rule keeps |L|^2 and the energy L.I^-1 L exactly (both
+// invariants are quadratic), so a free body neither spins up nor loses energy, and its polhode, hence
+// the intermediate-axis flip, is the true one.
+Vec3 midpointBodyAngularVelocity(const Mat3& I, const Mat3& invI, const Vec3& wb, float dt) {
+  const float h = 0.5f * dt;
+  const Vec3 L0 = I * wb;
+  Vec3 wm = wb + h * (invI * L0.cross(wb));  // explicit half step as the starting guess
+  for (int k = 0; k < kMidpointIterations; ++k) {
+    const Vec3 Lm = I * wm;
+    const Vec3 r = Lm - h * Lm.cross(wm) - L0;
+    const Mat3 J = I + h * (skew(wm) * I - skew(Lm));
+    const Vec3 step = J.inverse() * r;
+    wm -= step;
+    if (step.squaredNorm() <= kMidpointTolerance2 * wm.squaredNorm()) break;
+  }
+  return wm;
+}
+
+}  // namespace
+
 void integrateVelocities(BodyStore& b, uint32_t begin, uint32_t end, const Vec3& gravity, float dt) {
   for (uint32_t i = begin; i < end; ++i) {
     if (b.kind[i] != BodyKind::Dynamic || b.asleep[i]) continue;
@@ -24,28 +59,31 @@ void integratePositions(BodyStore& b, uint32_t begin, uint32_t end, float dt, fl
     Transform& xf = b.xf[i];
     xf.p += dt * b.v[i];
     const Vec3 w = b.w[i];
+    const bool spinning = w.squaredNorm() > 0.0f;
+    const bool freeBody = k == BodyKind::Dynamic && !b.implicitGyro[i];
     const Quat qOld = xf.q;
-    if (w.squaredNorm() > 0.0f) {
-      const Quat dq(0.0f, 0.5f * dt * w.x(), 0.5f * dt * w.y(), 0.5f * dt * w.z());
+    // A free body turns by its midpoint angular velocity; kinematic and jointed bodies by their own.
+    Vec3 wTurn = w;
+    if (spinning && freeBody)
+      wTurn = qOld * midpointBodyAngularVelocity(b.inertiaLocal[i], b.invInertiaLocal[i], qOld.conjugate() * w, dt);
+    if (spinning) {
+      // q' = normalize((1, dt/2 w) q): the Cayley rotation of dt w, which is what makes the free-body
+      // update below the exact midpoint rule.
+      const Quat dq(0.0f, 0.5f * dt * wTurn.x(), 0.5f * dt * wTurn.y(), 0.5f * dt * wTurn.z());
       Quat q = qOld;
       q.coeffs() += (dq * qOld).coeffs();
       xf.q = q.normalized();
     }
     if (k != BodyKind::Dynamic) continue;
-    if (w.squaredNorm() > 0.0f && b.implicitGyro[i]) {
+    if (spinning && b.implicitGyro[i]) {
       // Solve I (ω' - ω) + dt ω' × I ω' = 0 in the body frame by one Newton step from ω.
       const Mat3& I = b.inertiaLocal[i];
       const Vec3 wb = xf.q.conjugate() * w;
       const Vec3 Iw = I * wb;
-      auto skew = [](const Vec3& a) {
-        Mat3 m;
-        m << 0.0f, -a.z(), a.y(), a.z(), 0.0f, -a.x(), -a.y(), a.x(), 0.0f;
-        return m;
-      };
       const Mat3 J = I + dt * (skew(wb) * I - skew(Iw));
       b.w[i] = xf.q * (wb - J.inverse() * (dt * wb.cross(Iw)));
-    } else if (w.squaredNorm() > 0.0f) {
-      // Angular momentum in world space is unchanged by a pure rotation of the body.
+    } else if (spinning) {
+      // The world angular momentum is unchanged; read in the new body frame it is the midpoint rule's L1.
       const Vec3 L = qOld * (b.inertiaLocal[i] * (qOld.conjugate() * w));
       b.w[i] = xf.q * (b.invInertiaLocal[i] * (xf.q.conjugate() * L));
     }
