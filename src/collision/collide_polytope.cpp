@@ -5,6 +5,8 @@
 #include "collision/geometry.h"
 #include "collision/polytope.h"
 
+#include <algorithm>
+
 namespace haif {
 namespace detail {
 
@@ -90,8 +92,8 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
 
   const bool refIsB = faceB >= 0 && (faceA < 0 || sepB > sepA + kFaceBTol);
   const float faceSep = refIsB ? sepB : sepA;
-  // Edge-edge: one point between the closest points of the two edges.
-  auto edgeContact = [&]() {
+  // Edge-edge: one point between the closest points of the two edges, `sep` apart along the edge axis.
+  auto edgeContact = [&](float sep) {
     // The axis came from the first edge pair with that direction; the touching edges are the
     // parallel ones that support A along +L and B along -L.
     const Vec3 L = edgeAxis, Lb = Rt * edgeAxis;
@@ -103,9 +105,9 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
     closestSegmentSegment(a0, a1, b0, b1, s, u);
     const Vec3 qa = a0 + s * (a1 - a0), qb = b0 + u * (b1 - b0);
     const uint32_t id = 0x40000000u | ((uint32_t(edgeA) & 0x7FFFu) << 15) | (uint32_t(edgeB) & 0x7FFFu);
-    return writeSingle(m, xa.apply(0.5f * (qa + qb)), Ra * edgeAxis, -sepE, id);
+    return writeSingle(m, xa.apply(0.5f * (qa + qb)), Ra * edgeAxis, -sep, id);
   };
-  if (edgeA >= 0 && sepE > faceSep + kEdgeAbsTol + kEdgeRelTol * std::fabs(faceSep)) return edgeContact();
+  if (edgeA >= 0 && sepE > faceSep + kEdgeAbsTol + kEdgeRelTol * std::fabs(faceSep)) return edgeContact(sepE);
 
   // Reference face (in A's frame) and the incident face: the other's most anti-parallel face.
   const PolyView& ref = refIsB ? B : A;
@@ -116,11 +118,26 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
   const float offRef = refIsB ? RF.offset + t.dot(nRef) : RF.offset;
   // Incident face normals live in inc's frame: bring nRef there.
   const Vec3 nInInc = refIsB ? nRef : Vec3(Rt * nRef);
+  // The incident face is the most anti-parallel among the faces that hold inc's deepest vertex along
+  // -nRef. The most anti-parallel face of all may not hold it (a vertex with a long thin normal cone),
+  // and then every clipped point lies higher than that vertex: the contact came out too far, or beyond
+  // the margin with nothing left to clip (a pile hull over the ground got a 5 m deep edge fallback).
+  int deepestVert = 0;
+  float lowest = 1e30f;
+  for (int v = 0; v < inc.numVerts; ++v) {
+    const float d = inc.verts[v].dot(nInInc);
+    if (d < lowest) { lowest = d; deepestVert = v; }
+  }
   int incFace = 0;
   float best = 1e30f;
   for (int f = 0; f < inc.numFaces; ++f) {
-    const float d = inc.faces[f].normal.dot(nInInc);
-    if (d < best) { best = d; incFace = f; }
+    const ConvexHull::Face& F = inc.faces[f];
+    const float d = F.normal.dot(nInInc);
+    if (d >= best) continue;
+    const uint32_t* fv = inc.faceVerts + F.first;
+    if (std::find(fv, fv + F.count, uint32_t(deepestVert)) == fv + F.count) continue;
+    best = d;
+    incFace = f;
   }
 
   ClipPoint bufA[kMaxClipVerts], bufB[kMaxClipVerts];
@@ -155,7 +172,8 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
     buf.add(xa.apply(cur[i].p - (0.5f * s) * nRef), nWorld, -s, idBase | cur[i].fid);
   }
   // Clipping can leave nothing when the faces only meet at a rim (thin triangles): use the edges then.
-  if (buf.count == 0 && edgeA >= 0 && sepE <= margin) return edgeContact();
+  // No axis is deeper than the face axis's separation (SAT keeps the largest), so neither is the contact.
+  if (buf.count == 0 && edgeA >= 0 && sepE <= margin) return edgeContact(std::max(sepE, faceSep));
   return writeManifold(buf, m);
 }
 

@@ -2,6 +2,56 @@
 
 namespace haif {
 
+namespace {
+
+Mat3 skew(const Vec3& a) {
+  Mat3 m;
+  m << 0.0f, -a.z(), a.y(), a.z(), 0.0f, -a.x(), -a.y(), a.x(), 0.0f;
+  return m;
+}
+
+// Newton iterations for the midpoint angular velocity; it converges quadratically from the predictor,
+// so two or three suffice; the stop is relative to |w|.
+constexpr int kMidpointIterations = 4;
+constexpr float kMidpointTolerance2 = 1e-12f;
+// When the predictor changes w by less than this (relative), its own error (second order in that change,
+// ~1e-8) is below float rounding and Newton is skipped: bodies at rest or turning slowly.
+constexpr float kPredictorExact2 = 1e-8f;
+// w along a principal axis to within 1e-6 rad (always so for cubes and spheres): nothing turns L away
+// from w, so the body turns by w and keeps it (the cheapest path, no change of frame).
+constexpr float kPrincipal2 = 1e-12f;
+
+// q' = normalize((1, dt/2 w) q): the Cayley rotation of dt w (world frame).
+Quat cayleyTurn(const Quat& q, const Vec3& w, float dt) {
+  const Quat dq(0.0f, 0.5f * dt * w.x(), 0.5f * dt * w.y(), 0.5f * dt * w.z());
+  Quat r = q;
+  r.coeffs() += (dq * q).coeffs();
+  return r.normalized();
+}
+
+// Implicit midpoint rule on Euler's equations in the body frame, dL/dt = L x w with L0 = I wb:
+// L1 = L0 + dt Lm x wm, Lm = (L0 + L1) / 2 = I wm. Returns wm, found by Newton on
+// f(wm) = I wm - (dt/2) (I wm) x wm - L0 = 0. The rule keeps |L|^2 and the energy L.I^-1 L exactly (both
+// invariants are quadratic), so a free body neither spins up nor loses energy, and its polhode, hence
+// the intermediate-axis flip, is the true one.
+Vec3 midpointBodyAngularVelocity(const Mat3& I, const Mat3& invI, const Vec3& wb, const Vec3& L0, float dt) {
+  const float h = 0.5f * dt;
+  const Vec3 predict = h * (invI * L0.cross(wb));  // explicit half step as the starting guess
+  Vec3 wm = wb + predict;
+  if (predict.squaredNorm() <= kPredictorExact2 * wb.squaredNorm()) return wm;
+  for (int k = 0; k < kMidpointIterations; ++k) {
+    const Vec3 Lm = I * wm;
+    const Vec3 r = Lm - h * Lm.cross(wm) - L0;
+    const Mat3 J = I + h * (skew(wm) * I - skew(Lm));
+    const Vec3 step = J.inverse() * r;
+    wm -= step;
+    if (step.squaredNorm() <= kMidpointTolerance2 * wm.squaredNorm()) break;
+  }
+  return wm;
+}
+
+}  // namespace
+
 void integrateVelocities(BodyStore& b, uint32_t begin, uint32_t end, const Vec3& gravity, float dt) {
   for (uint32_t i = begin; i < end; ++i) {
     if (b.kind[i] != BodyKind::Dynamic || b.asleep[i]) continue;
@@ -24,32 +74,34 @@ void integratePositions(BodyStore& b, uint32_t begin, uint32_t end, float dt, fl
     Transform& xf = b.xf[i];
     xf.p += dt * b.v[i];
     const Vec3 w = b.w[i];
-    const Quat qOld = xf.q;
-    if (w.squaredNorm() > 0.0f) {
-      const Quat dq(0.0f, 0.5f * dt * w.x(), 0.5f * dt * w.y(), 0.5f * dt * w.z());
-      Quat q = qOld;
-      q.coeffs() += (dq * qOld).coeffs();
-      xf.q = q.normalized();
-    }
-    if (k != BodyKind::Dynamic) continue;
-    if (w.squaredNorm() > 0.0f && b.implicitGyro[i]) {
-      // Solve I (ω' - ω) + dt ω' × I ω' = 0 in the body frame by one Newton step from ω.
+    const bool spinning = w.squaredNorm() > 0.0f;
+    const bool freeBody = k == BodyKind::Dynamic && !b.implicitGyro[i];
+    const Vec3 u = b.invInertiaWorld[i] * w;
+    if (spinning && freeBody && u.cross(w).squaredNorm() > kPrincipal2 * u.squaredNorm() * w.squaredNorm()) {
+      // Free body: the exact midpoint rule. Turn by the Cayley rotation of dt w_mid (body frame), then
+      // read w from the unchanged world L in the new frame: |L| and the energy are kept.
       const Mat3& I = b.inertiaLocal[i];
-      const Vec3 wb = xf.q.conjugate() * w;
-      const Vec3 Iw = I * wb;
-      auto skew = [](const Vec3& a) {
-        Mat3 m;
-        m << 0.0f, -a.z(), a.y(), a.z(), 0.0f, -a.x(), -a.y(), a.x(), 0.0f;
-        return m;
-      };
-      const Mat3 J = I + dt * (skew(wb) * I - skew(Iw));
-      b.w[i] = xf.q * (wb - J.inverse() * (dt * wb.cross(Iw)));
-    } else if (w.squaredNorm() > 0.0f) {
-      // Angular momentum in world space is unchanged by a pure rotation of the body.
-      const Vec3 L = qOld * (b.inertiaLocal[i] * (qOld.conjugate() * w));
-      b.w[i] = xf.q * (b.invInertiaLocal[i] * (xf.q.conjugate() * L));
+      const Quat qOld = xf.q;
+      const Vec3 wb = qOld.conjugate() * w;
+      const Vec3 L0 = I * wb;
+      const Vec3 wm = midpointBodyAngularVelocity(I, b.invInertiaLocal[i], wb, L0, dt);
+      xf.q = (qOld * Quat(1.0f, 0.5f * dt * wm.x(), 0.5f * dt * wm.y(), 0.5f * dt * wm.z())).normalized();
+      b.updateWorldInertia(i);
+      b.w[i] = b.invInertiaWorld[i] * (qOld * L0);
+    } else {
+      // Kinematic, jointed, or free and spinning about a principal axis (w kept).
+      if (spinning) xf.q = cayleyTurn(xf.q, w, dt);
+      if (k != BodyKind::Dynamic) continue;
+      if (spinning && !freeBody) {
+        // Jointed body: solve I (ω' - ω) + dt ω' × I ω' = 0 in the body frame by one Newton step from ω.
+        const Mat3& I = b.inertiaLocal[i];
+        const Vec3 wb = xf.q.conjugate() * w;
+        const Vec3 Iw = I * wb;
+        const Mat3 J = I + dt * (skew(wb) * I - skew(Iw));
+        b.w[i] = xf.q * (wb - J.inverse() * (dt * wb.cross(Iw)));
+      }
+      b.updateWorldInertia(i);
     }
-    b.updateWorldInertia(i);
     const bool slow = b.v[i].squaredNorm() < lin2 && b.w[i].squaredNorm() < ang2;
     b.restTime[i] = slow ? b.restTime[i] + dt : 0.0f;
   }

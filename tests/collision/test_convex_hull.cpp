@@ -218,5 +218,42 @@ TEST(HullCollision, OctahedronPointDownOnBox) {
   expectVecNear(m.points[0].position, Vec3(0.3f, 0.475f, 0), 1e-5f);
 }
 
+// Regression (stress scene pile_10000: a 9 m "penetration" of 0.3 m bodies): an 11-vertex hull from the
+// pile just above the 1000 m ground box. Its face most anti-parallel to the ground normal does not hold
+// its lowest vertex, so every vertex of that incident face lay beyond the margin, clipping kept nothing
+// and the edge-pair fallback reported an axis tilted 0.6 degrees from vertical, on which the 1000 m box
+// projects 5.6 m long: depth 5.5 m. The known answer is the lowest vertex's height, a vertex-face gap.
+TEST(HullCollision, HullVertexJustAboveHugeBoxIsAGapNotAPenetration) {
+  const std::vector<Vec3> pts = {
+      {-0.159283653f, 0.105807841f, -0.0791489333f}, {-0.0134383524f, -0.00647925958f, 0.212480605f},
+      {-0.0134383524f, 0.2130972f, -0.0104417438f},  {-0.0134383524f, -0.00647925958f, -0.156291172f},
+      {-0.0134383524f, -0.211989671f, -0.0104417438f}, {0.147544757f, 0.0680003092f, -0.104481153f},
+      {-0.0892515853f, -0.140549675f, 0.105268709f}, {0.130980939f, -0.113300614f, -0.0442552082f},
+      {0.163279995f, -0.00647925958f, -0.0104417438f}, {0.13526693f, 0.0398818962f, 0.01854771f},
+      {-0.148845315f, -0.00647925958f, -0.0104417438f}};
+  auto h = mustBuild(pts);
+  ASSERT_TRUE(h);
+  const Shape ground = Shape::box(Vec3(500.0f, 1.0f, 500.0f));
+  const Transform xg = xf(Vec3(0.0f, -1.0f, 0.0f));
+  const Transform xh = xf(Vec3(-2.96993995f, 0.181302547f, -5.09772635f),
+                          Quat(-0.549479544f, -0.563578963f, -0.381894618f, -0.48436299f));
+  float lowest = 1e30f;
+  for (const Vec3& v : h->vertices) lowest = std::min(lowest, xh.apply(v).y());
+  ASSERT_GT(lowest, 0.03f);  // the hull hovers 3.7 cm above the ground: a gap
+  // 4 cm: only the lowest vertex is in reach (the pile's case); 10 cm: the incident face is too, but it
+  // sits 4.6 mm higher, so the contact was reported that much too far away.
+  for (float margin : {0.04f, 0.1f}) {
+    Manifold m;
+    ASSERT_GE(collideBoth(ground, xg, Shape::convexHull(h), xh, margin, m), 1) << "margin " << margin;
+    float deepest = -1e30f;
+    for (int i = 0; i < m.count; ++i) {
+      expectVecNear(m.points[i].normal, Vec3::UnitY(), 1e-4f);
+      EXPECT_LE(m.points[i].depth, -lowest + 1e-4f) << "point " << i << ", margin " << margin;
+      deepest = std::max(deepest, m.points[i].depth);
+    }
+    EXPECT_NEAR(deepest, -lowest, 1e-4f) << "margin " << margin;
+  }
+}
+
 }  // namespace
 }  // namespace haif
