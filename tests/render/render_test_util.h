@@ -6,8 +6,21 @@
 #include <vector>
 
 #include "render/frame_input.h"
+#include "render/view_setup.h"
 
 namespace haif::render::test {
+
+/// The view of a fixed camera at `eye` looking at `target`, for a scene of one sphere of `radius`
+/// centred at (0, 1, 0) (the bounds set the clip planes).
+inline ViewSetup viewFrom(Vec3 eye, Vec3 target, int w = 320, int h = 240, float radius = 1.f) {
+  Camera c;
+  c.automatic = false;
+  c.eye[0] = eye.x, c.eye[1] = eye.y, c.eye[2] = eye.z;
+  c.target[0] = target.x, c.target[1] = target.y, c.target[2] = target.z;
+  SceneBounds b;
+  b.add({0.f, 1.f, 0.f}, radius);
+  return computeView(c, b, w, h);
+}
 
 /// The reference ground: static box half extents (500, 1, 500) centred at y = -1.
 inline Instance groundBox() {

@@ -5,19 +5,12 @@
 #include <cmath>
 
 #include "render/shadow_footprint.h"
+#include "render_test_util.h"
 
 namespace haif::render {
 namespace {
 
-ViewSetup viewFrom(Vec3 eye, Vec3 target, int w, int h) {
-  Camera c;
-  c.automatic = false;
-  c.eye[0] = eye.x, c.eye[1] = eye.y, c.eye[2] = eye.z;
-  c.target[0] = target.x, c.target[1] = target.y, c.target[2] = target.z;
-  SceneBounds b;
-  b.add({0.f, 1.f, 0.f}, 2.f);
-  return computeView(c, b, w, h);
-}
+ViewSetup viewFrom(Vec3 eye, Vec3 target, int w, int h) { return test::viewFrom(eye, target, w, h, 2.f); }
 
 const Vec3 kSun = normalize({-0.45f, 0.82f, -0.30f});
 

@@ -6,19 +6,12 @@
 #include <vector>
 
 #include "render/sky_extent.h"
+#include "render_test_util.h"
 
 namespace haif::render {
 namespace {
 
-ViewSetup viewFrom(Vec3 eye, Vec3 target) {
-  Camera c;
-  c.automatic = false;
-  c.eye[0] = eye.x, c.eye[1] = eye.y, c.eye[2] = eye.z;
-  c.target[0] = target.x, c.target[1] = target.y, c.target[2] = target.z;
-  SceneBounds b;
-  b.add({0.f, 1.f, 0.f}, 1.f);
-  return computeView(c, b, 320, 240);
-}
+using test::viewFrom;
 
 GroundFace groundTop(float half) {
   GroundFace g;  // y = 0, normal +y
