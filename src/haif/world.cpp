@@ -1,6 +1,7 @@
 #include "haif/world.h"
 
 #include "collision/collide.h"
+#include "core/pose_hash.h"
 #include "dynamics/integrator.h"
 
 #include <tbb/blocked_range.h>
@@ -9,7 +10,6 @@
 #include <chrono>
 #include <cmath>
 #include <algorithm>
-#include <cstring>
 #include <stdexcept>
 
 namespace haif {
@@ -821,20 +821,9 @@ void World::step() {
 // ---- queries -----------------------------------------------------------------------------
 
 uint64_t World::stateHash() const {
-  uint64_t h = 1469598103934665603ull;
-  auto mix = [&](float f) {
-    uint32_t u;
-    std::memcpy(&u, &f, sizeof u);
-    for (int k = 0; k < 4; ++k) {
-      h ^= (u >> (8 * k)) & 0xffu;
-      h *= 1099511628211ull;
-    }
-  };
-  for (const Transform& xf : bodies_.xf) {
-    mix(xf.p.x()); mix(xf.p.y()); mix(xf.p.z());
-    mix(xf.q.x()); mix(xf.q.y()); mix(xf.q.z()); mix(xf.q.w());
-  }
-  return h;
+  PoseHash h;
+  for (const Transform& xf : bodies_.xf) h.add(xf.p, xf.q);
+  return h.value();
 }
 
 double World::kineticEnergy() const {
