@@ -93,15 +93,23 @@ bool writePng(const std::string& path, int w, int h, const uint8_t* rgba, std::s
   return true;
 }
 
-bool readPng(const std::string& path, int* w, int* h, std::vector<uint8_t>* rgba, std::string* error) {
-  png_image image;
+namespace {
+
+// Opens `path` and reads its header into `image`; on failure frees it and says why.
+bool beginRead(const std::string& path, png_image& image, std::string* error) {
   std::memset(&image, 0, sizeof image);
   image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&image, path.c_str())) {
-    if (error) *error = "cannot read PNG '" + path + "': " + image.message;
-    png_image_free(&image);
-    return false;
-  }
+  if (png_image_begin_read_from_file(&image, path.c_str())) return true;
+  if (error) *error = "cannot read PNG '" + path + "': " + image.message;
+  png_image_free(&image);
+  return false;
+}
+
+}  // namespace
+
+bool readPng(const std::string& path, int* w, int* h, std::vector<uint8_t>* rgba, std::string* error) {
+  png_image image;
+  if (!beginRead(path, image, error)) return false;
   image.format = PNG_FORMAT_RGBA;
   rgba->resize(PNG_IMAGE_SIZE(image));
   if (!png_image_finish_read(&image, nullptr, rgba->data(), 0, nullptr)) {
@@ -116,13 +124,7 @@ bool readPng(const std::string& path, int* w, int* h, std::vector<uint8_t>* rgba
 
 bool readPngSize(const std::string& path, int* w, int* h, std::string* error) {
   png_image image;
-  std::memset(&image, 0, sizeof image);
-  image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&image, path.c_str())) {
-    if (error) *error = "cannot read PNG '" + path + "': " + image.message;
-    png_image_free(&image);
-    return false;
-  }
+  if (!beginRead(path, image, error)) return false;
   *w = static_cast<int>(image.width);
   *h = static_cast<int>(image.height);
   png_image_free(&image);
