@@ -5,6 +5,96 @@
 
 namespace haif {
 
+namespace {
+
+// Builds cc.blockInverse (see ContactConstraint) from the manifold's point positions and the
+// coupling matrix; false when the block must be solved by passes alone.
+bool prepareBlockInverse(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
+                         ContactConstraint& cc) {
+  const int m = cc.count;
+  if (m < 2) return false;
+  const Vec3 n0 = cc.points[0].normal;
+  for (int i = 1; i < m; ++i)
+    if ((cc.points[i].normal - n0).squaredNorm() > 1e-8f) return false;
+  // In-plane coordinates of the points and the principal axes of their spread.
+  double s[kMaxManifoldPoints], t[kMaxManifoldPoints], css = 0.0, ctt = 0.0, cst = 0.0;
+  for (int i = 0; i < m; ++i) {
+    const Vec3 d = mf.points[i].position - centre;
+    s[i] = d.dot(t1);
+    t[i] = d.dot(t2);
+    css += s[i] * s[i];
+    ctt += t[i] * t[i];
+    cst += s[i] * t[i];
+  }
+  const double half = 0.5 * (css + ctt);
+  const double disc = std::sqrt(std::max(0.0, half * half - (css * ctt - cst * cst)));
+  const double l1 = half + disc, l2 = half - disc;
+  if (!(l1 > 1e-12)) return false;  // all points in one place
+  double e1s = 1.0, e1t = 0.0;
+  if (std::fabs(cst) > 1e-14 * l1) {
+    const double len = std::hypot(l1 - ctt, cst);
+    e1s = (l1 - ctt) / len;
+    e1t = cst / len;
+  } else if (ctt > css) {
+    e1s = 0.0;
+    e1t = 1.0;
+  }
+  const int k = m >= 3 && l2 > 1e-4 * l1 ? 3 : 2;  // collinear points span a line: rank 2
+  double B[kMaxManifoldPoints][3];
+  for (int i = 0; i < m; ++i) {
+    B[i][0] = 1.0;
+    B[i][1] = (s[i] * e1s + t[i] * e1t) / std::sqrt(l1);
+    B[i][2] = k == 3 ? (t[i] * e1s - s[i] * e1t) / std::sqrt(l2) : 0.0;
+  }
+  // A = Bᵀ K B (k × k, symmetric positive definite when the bodies can respond in all k ways).
+  double KB[kMaxManifoldPoints][3] = {};
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j)
+      for (int a = 0; a < k; ++a) KB[i][a] += double(cc.normalCoupling[i][j]) * B[j][a];
+  double A[3][3] = {};
+  for (int a = 0; a < k; ++a)
+    for (int b = a; b < k; ++b) {
+      for (int i = 0; i < m; ++i) A[a][b] += B[i][a] * KB[i][b];
+      A[b][a] = A[a][b];
+    }
+  // Inverse by cofactors; a determinant small against the diagonal means a direction the bodies
+  // cannot respond in (e.g. no rotation): leave that block to the passes.
+  double inv[3][3] = {};
+  if (k == 2) {
+    const double det = A[0][0] * A[1][1] - A[0][1] * A[1][0];
+    if (!(det > 1e-6 * A[0][0] * A[1][1])) return false;
+    inv[0][0] = A[1][1] / det;
+    inv[1][1] = A[0][0] / det;
+    inv[0][1] = inv[1][0] = -A[0][1] / det;
+  } else {
+    const double c00 = A[1][1] * A[2][2] - A[1][2] * A[2][1];
+    const double c01 = A[1][2] * A[2][0] - A[1][0] * A[2][2];
+    const double c02 = A[1][0] * A[2][1] - A[1][1] * A[2][0];
+    const double det = A[0][0] * c00 + A[0][1] * c01 + A[0][2] * c02;
+    if (!(det > 1e-6 * A[0][0] * A[1][1] * A[2][2])) return false;
+    inv[0][0] = c00 / det;
+    inv[1][0] = inv[0][1] = c01 / det;
+    inv[2][0] = inv[0][2] = c02 / det;
+    inv[1][1] = (A[0][0] * A[2][2] - A[0][2] * A[2][0]) / det;
+    inv[2][1] = inv[1][2] = (A[0][2] * A[1][0] - A[0][0] * A[1][2]) / det;
+    inv[2][2] = (A[0][0] * A[1][1] - A[0][1] * A[1][0]) / det;
+  }
+  double C[3][kMaxManifoldPoints] = {};  // A⁻¹ Bᵀ
+  for (int a = 0; a < k; ++a)
+    for (int j = 0; j < m; ++j)
+      for (int b = 0; b < k; ++b) C[a][j] += inv[a][b] * B[j][b];
+  for (int i = 0; i < kMaxManifoldPoints; ++i)
+    for (int j = i; j < kMaxManifoldPoints; ++j) {
+      double g = 0.0;
+      if (j < m)
+        for (int a = 0; a < k; ++a) g += B[i][a] * C[a][j];
+      cc.blockInverse[i][j] = cc.blockInverse[j][i] = float(g);
+    }
+  return true;
+}
+
+}  // namespace
+
 void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci, const SolverParams& p,
                     ContactConstraint& cc) {
   const uint32_t a = contact.a, b = contact.b;
@@ -56,13 +146,15 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   }
   for (int i = 0; i < cc.count; ++i) {
     const ContactConstraint::Point& pi = cc.points[i];
-    for (int j = 0; j < cc.count; ++j) {
+    for (int j = i; j < cc.count; ++j) {  // symmetric: the solver reads rows as columns
       const ContactConstraint::Point& pj = cc.points[j];
-      cc.normalCoupling[i][j] = mSum * pi.normal.dot(pj.normal) + pi.rAxn.dot(pj.iAn) + pi.rBxn.dot(pj.iBn);
+      cc.normalCoupling[i][j] = cc.normalCoupling[j][i] =
+          mSum * pi.normal.dot(pj.normal) + pi.rAxn.dot(pj.iAn) + pi.rBxn.dot(pj.iBn);
     }
   }
 
   for (int r = 0; r < ContactConstraint::kRows; ++r) cc.delta[r] = cc.direction[r] = 0.0f;
+  cc.blockExact = false;
 
   // Friction at the centre of the points, about the mean normal.
   if (cc.count == 0) return;
@@ -100,6 +192,7 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   float radius = 0.0f;
   for (int i = 0; i < cc.count; ++i) radius += (contact.manifold.points[i].position - centre).norm();
   cc.twistRadius = radius / float(cc.count);
+  cc.blockExact = prepareBlockInverse(contact.manifold, centre, cc.tangent1, cc.tangent2, cc);
 
   if (p.warmStart) {
     cc.tangentImpulse1 = contact.frictionImpulse.dot(cc.tangent1);
@@ -140,6 +233,58 @@ void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n) {
       angB += p.normalImpulse * p.iBn;
     }
     apply(bodies, c, P, angA, angB);
+  }
+}
+
+// The normal rows of a manifold are solved as one small problem: their velocities are read once,
+// updated through the coupling matrix while a few projected passes settle the split of the load,
+// and the caller applies the net impulse change to the bodies once. M is the point count, known at
+// compile time so the passes unroll and the coupling update vectorises.
+template <int M>
+inline void solveNormalBlock(ContactConstraint& c, const Vec3& va, const Vec3& wa, const Vec3& vb, const Vec3& wb,
+                             float omega, bool useBias, float* applied) {
+  float vn[M], bias[M], lambda[M], start[M];
+  const Vec3 dv = vb - va;
+  for (int i = 0; i < M; ++i) {
+    const ContactConstraint::Point& p = c.points[i];
+    vn[i] = p.normal.dot(dv) + p.rBxn.dot(wb) - p.rAxn.dot(wa);
+    bias[i] = useBias ? p.bias : (p.restitutionBias < 0.0f && p.normalImpulse > 0.0f ? p.restitutionBias : p.relaxBias);
+    lambda[i] = start[i] = p.normalImpulse;
+  }
+  if (M > 1 && c.blockExact) {
+    // Exact block solve; kept only when it leaves every point pushing (λ ≥ 0).
+    float next[M];
+    bool loaded = true;
+    for (int i = 0; i < M; ++i) {
+      float d = 0.0f;
+      for (int j = 0; j < M; ++j) d -= c.blockInverse[i][j] * (vn[j] + bias[j]);
+      next[i] = lambda[i] + omega * d;
+      loaded &= next[i] >= 0.0f;
+    }
+    if (loaded) {
+      for (int i = 0; i < M; ++i) {
+        c.points[i].normalImpulse = next[i];
+        applied[i] = next[i] - start[i];
+      }
+      return;
+    }
+  }
+  constexpr int passes = M > 1 ? kManifoldNormalPasses : 1;
+  for (int pass = 0; pass < passes; ++pass) {
+    bool moved = false;
+    for (int i = 0; i < M; ++i) {
+      const float old = lambda[i];
+      lambda[i] = std::max(0.0f, old - omega * c.points[i].normalMass * (vn[i] + bias[i]));
+      const float d = lambda[i] - old;
+      if (d == 0.0f) continue;
+      moved = true;
+      for (int j = 0; j < M; ++j) vn[j] += c.normalCoupling[i][j] * d;  // K is symmetric: row i is column i
+    }
+    if (!moved) break;  // a pass that changed nothing ends the block solve (separated contacts: at once)
+  }
+  for (int i = 0; i < M; ++i) {
+    c.points[i].normalImpulse = lambda[i];
+    applied[i] = lambda[i] - start[i];
   }
 }
 
@@ -198,39 +343,23 @@ SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, f
     }
 
     // Normal rows last: non-penetration matters more than friction, so each sweep ends with the
-    // normal rows satisfied. The rows of the manifold are solved as one small problem: their
-    // velocities are read once, updated through the coupling matrix while a few projected passes
-    // settle the split of the load, and the net impulse change is applied to the bodies once.
-    float vn[kMaxManifoldPoints], bias[kMaxManifoldPoints], start[kMaxManifoldPoints];
-    for (int i = 0; i < m; ++i) {
-      const ContactConstraint::Point& p = c.points[i];
-      vn[i] = p.normal.dot(vb - va) + p.rBxn.dot(wb) - p.rAxn.dot(wa);
-      bias[i] = useBias ? p.bias : (p.restitutionBias < 0.0f && p.normalImpulse > 0.0f ? p.restitutionBias : p.relaxBias);
-      start[i] = p.normalImpulse;
-    }
-    const int passes = m > 1 ? kManifoldNormalPasses : 1;
-    for (int pass = 0; pass < passes; ++pass) {
-      bool moved = false;
-      for (int i = 0; i < m; ++i) {
-        ContactConstraint::Point& p = c.points[i];
-        const float old = p.normalImpulse;
-        p.normalImpulse = std::max(0.0f, old - omega * p.normalMass * (vn[i] + bias[i]));
-        const float applied = p.normalImpulse - old;
-        if (applied == 0.0f) continue;
-        moved = true;
-        for (int j = 0; j < m; ++j) vn[j] += c.normalCoupling[j][i] * applied;
-      }
-      if (!moved) break;  // a pass that changed nothing ends the block solve (separated contacts: at once)
+    // normal rows satisfied (see solveNormalBlock).
+    float applied[kMaxManifoldPoints];
+    switch (m) {
+      case 4: solveNormalBlock<4>(c, va, wa, vb, wb, omega, useBias, applied); break;
+      case 3: solveNormalBlock<3>(c, va, wa, vb, wb, omega, useBias, applied); break;
+      case 2: solveNormalBlock<2>(c, va, wa, vb, wb, omega, useBias, applied); break;
+      default: solveNormalBlock<1>(c, va, wa, vb, wb, omega, useBias, applied); break;
     }
     for (int i = 0; i < m; ++i) {
       const ContactConstraint::Point& p = c.points[i];
-      const float applied = p.normalImpulse - start[i];
-      c.delta[i] = applied;
-      va -= (mA * applied) * p.normal;
-      wa -= applied * p.iAn;
-      vb += (mB * applied) * p.normal;
-      wb += applied * p.iBn;
-      if (p.normalMass > 0.0f) residual = std::max(residual, std::fabs(applied) / p.normalMass);
+      c.delta[i] = applied[i];
+      va -= (mA * applied[i]) * p.normal;
+      wa -= applied[i] * p.iAn;
+      vb += (mB * applied[i]) * p.normal;
+      wb += applied[i] * p.iBn;
+      // |Δλ| / normalMass: the velocity correction of the row (K_ii = 1 / normalMass).
+      if (p.normalMass > 0.0f) residual = std::max(residual, std::fabs(applied[i]) * c.normalCoupling[i][i]);
     }
     float sq = 0.0f;
     for (int r = 0; r < ContactConstraint::kRows; ++r) sq += c.delta[r] * c.delta[r];

@@ -49,6 +49,14 @@ struct ContactConstraint {
   /// solved together against it (see solveIteration), which keeps the torque a manifold carries
   /// consistent within each sweep.
   float normalCoupling[kMaxManifoldPoints][kMaxManifoldPoints];
+  /// Exact solve of the normal block while every point stays loaded: Δλ = G (−J v − b), with
+  /// G = B (BᵀKB)⁻¹ Bᵀ. When the points share one normal, each normal row is an affine function of
+  /// its point's position in the contact plane, so K has rank ≤ 3 and B = [1, u, w] (u, w: the
+  /// in-plane principal coordinates of the points) spans its range: G is K's pseudo-inverse there,
+  /// and one product settles the block, torque split included, where passes only approach it.
+  /// `blockExact` false: the points have different normals or are degenerate; passes only.
+  float blockInverse[kMaxManifoldPoints][kMaxManifoldPoints];
+  bool blockExact;
 
   // Friction at the centre of the manifold. Friction per point would make the sliding torque
   // depend on how the load happens to be split among 4 coplanar points (a split the normal rows
@@ -68,10 +76,11 @@ struct ContactConstraint {
   float direction[kRows];  ///< conjugate direction of the accelerated solve (see accelerate)
 };
 
-/// Passes of projected Gauss-Seidel over a manifold's own normal rows per sweep. Row by row with
-/// body updates in between, a manifold's 4 coplanar points end each sweep with an arbitrary split of
-/// the load, and the torque error rocks tall stacks apart (a 10-box stack fell at 10 iterations);
-/// solving the small 4x4 problem to near convergence inside each sweep holds it still.
+/// Passes of projected Gauss-Seidel over a manifold's own normal rows per sweep, when the exact
+/// block solve (blockInverse) does not apply or would pull on a point. Row by row with body updates
+/// in between, a manifold's 4 coplanar points end each sweep with an arbitrary split of the load,
+/// and the torque error rocks tall stacks apart (a 10-box stack fell at 10 iterations); solving the
+/// small 4x4 problem to near convergence inside each sweep holds it still.
 constexpr int kManifoldNormalPasses = 4;
 
 /// Solver rows one manifold of `points` points costs per sweep: its normal rows and 3 friction rows.
