@@ -16,36 +16,25 @@ bool prepareBlockInverse(const Manifold& mf, const Vec3& centre, const Vec3& t1,
   const Vec3 n0 = cc.points[0].normal;
   for (int i = 1; i < m; ++i)
     if ((cc.points[i].normal - n0).squaredNorm() > 1e-8f) return false;
-  // In-plane coordinates of the points and the principal axes of their spread.
-  double s[kMaxManifoldPoints], t[kMaxManifoldPoints], css = 0.0, ctt = 0.0, cst = 0.0;
+  // In-plane coordinates of the points. G does not depend on which basis of the affine functions
+  // B holds, so B = [1, s, t] serves; collinear points span only [1, the coordinate along them].
+  double B[kMaxManifoldPoints][3];
+  double css = 0.0, ctt = 0.0, cst = 0.0;
   for (int i = 0; i < m; ++i) {
     const Vec3 d = mf.points[i].position - centre;
-    s[i] = d.dot(t1);
-    t[i] = d.dot(t2);
-    css += s[i] * s[i];
-    ctt += t[i] * t[i];
-    cst += s[i] * t[i];
-  }
-  const double half = 0.5 * (css + ctt);
-  const double disc = std::sqrt(std::max(0.0, half * half - (css * ctt - cst * cst)));
-  const double l1 = half + disc, l2 = half - disc;
-  if (!(l1 > 1e-12)) return false;  // all points in one place
-  double e1s = 1.0, e1t = 0.0;
-  if (std::fabs(cst) > 1e-14 * l1) {
-    const double len = std::hypot(l1 - ctt, cst);
-    e1s = (l1 - ctt) / len;
-    e1t = cst / len;
-  } else if (ctt > css) {
-    e1s = 0.0;
-    e1t = 1.0;
-  }
-  const int k = m >= 3 && l2 > 1e-4 * l1 ? 3 : 2;  // collinear points span a line: rank 2
-  double B[kMaxManifoldPoints][3];
-  for (int i = 0; i < m; ++i) {
     B[i][0] = 1.0;
-    B[i][1] = (s[i] * e1s + t[i] * e1t) / std::sqrt(l1);
-    B[i][2] = k == 3 ? (t[i] * e1s - s[i] * e1t) / std::sqrt(l2) : 0.0;
+    B[i][1] = d.dot(t1);
+    B[i][2] = d.dot(t2);
+    css += B[i][1] * B[i][1];
+    ctt += B[i][2] * B[i][2];
+    cst += B[i][1] * B[i][2];
   }
+  const double spread = css + ctt;
+  if (!(spread > 1e-12)) return false;  // all points in one place
+  const bool collinear = css * ctt - cst * cst <= 1e-4 * spread * spread;
+  const int k = m >= 3 && !collinear ? 3 : 2;
+  if (k == 2 && ctt > css)
+    for (int i = 0; i < m; ++i) B[i][1] = B[i][2];
   // A = Bᵀ K B (k × k, symmetric positive definite when the bodies can respond in all k ways).
   double KB[kMaxManifoldPoints][3] = {};
   for (int i = 0; i < m; ++i)

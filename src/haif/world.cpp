@@ -30,6 +30,9 @@ constexpr float kWarmStartMatchDistance = 0.02f;
 
 /// Mass-weighted RMS velocity error (m/s) below which a solve's starting point counts as exact.
 constexpr float kSolveErrorFloor = 1e-4f;
+// Largest velocity correction (m/s) below which a sweep takes no momentum step: the island has
+// converged to float noise, and a conjugate step there only costs time.
+constexpr float kMomentumFloor = 1e-5f;
 
 }  // namespace
 
@@ -459,6 +462,10 @@ void World::solveIslands(int iterations) {
       // Converged islands stop: precision nobody can see is not paid for.
       if (tol > 0.0f && it >= iMin && residual < tol) break;
       if (!cg || it == iterations) continue;  // the main sweeps end on a sweep, not a momentum step
+      if (residual < kMomentumFloor) {
+        lastChange = 0.0;  // converged: no momentum to carry; a later sweep starts a new direction
+        continue;
+      }
       const double change = sweep.change;
       if (it == 1 || lastChange <= 0.0 || change > lastChange) {
         startDirection(cs, n);  // first direction, or a restart: the last step overshot
