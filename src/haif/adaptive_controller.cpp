@@ -44,18 +44,28 @@ void AdaptiveController::observe(const ControlContext& ctx, const SolveObservati
   if (!useClock_) return;  // model mode never learns from the clock: it must stay deterministic
   const double lr = s_.learnRate;
   postMs_ = postMs_ < 0.0 ? obs.integrateMs : (1.0 - lr) * postMs_ + lr * obs.integrateMs;
-  const double crit = CostModel::criticalRows(ctx.totalRows, ctx.largestRows, threadsFor(ctx), model_.parallelEfficiency);
+  const int threads = threadsFor(ctx);
+  const double crit = CostModel::criticalRows(ctx.totalRows, ctx.largestRows, threads, model_.parallelEfficiency);
   if (crit <= 0.0 || obs.solveMs <= 0.0) return;
-  // The solve did (prepare + iterations) over the critical path. Keep the prepare/iteration ratio of
-  // the model and fit the scale to the measurement.
-  const double itersOnPath = obs.iterations > 0 && ctx.totalRows > 0
-                                 ? double(obs.criticalRowIterations) / std::max(1.0, double(ctx.largestRows))
-                                 : 0.0;
-  const double ratio = model_.msPerRowPrepare / model_.msPerRowIteration;
-  const double denom = crit * (ratio + std::max(1.0, itersOnPath));
-  const double perRow = obs.solveMs / denom;
-  model_.msPerRowIteration = (1.0 - lr) * model_.msPerRowIteration + lr * perRow;
-  model_.msPerRowPrepare = ratio * model_.msPerRowIteration;
+  // Sweeps along the critical path: the row-weighted mean when the path is the threads' share of
+  // all rows (islands stop early on their own), the largest island's count when that island is it.
+  const double share = CostModel::criticalRows(ctx.totalRows, 0, threads, model_.parallelEfficiency);
+  double sweeps = double(obs.iterations);
+  if (share >= double(ctx.largestRows) && obs.rowIterations > 0 && ctx.totalRows > 0)
+    sweeps = double(obs.rowIterations) / double(ctx.totalRows);
+  else if (obs.criticalRowIterations > 0 && ctx.largestRows > 0)
+    sweeps = double(obs.criticalRowIterations) / double(ctx.largestRows);
+  sweeps = std::max(1.0, sweeps);
+  // The part of the solve's wall time that went to sweeps: the measured thread-time ratio, or,
+  // when the world did not measure it, the model's own.
+  const double measured = obs.fixedThreadMs + obs.sweepThreadMs;
+  const double modelSweeps = sweeps * model_.msPerRowIteration;
+  const double sweepShare = measured > 0.0 ? obs.sweepThreadMs / measured
+                                           : modelSweeps / (model_.msPerRowPrepare + modelSweeps);
+  const double perRowIteration = obs.solveMs * sweepShare / (crit * sweeps);
+  const double perRowPrepare = obs.solveMs * (1.0 - sweepShare) / crit;
+  model_.msPerRowIteration = (1.0 - lr) * model_.msPerRowIteration + lr * perRowIteration;
+  model_.msPerRowPrepare = (1.0 - lr) * model_.msPerRowPrepare + lr * perRowPrepare;
 }
 
 ReplayController::ReplayController(std::vector<int> counts) : counts_(std::move(counts)) {

@@ -5,6 +5,13 @@
 // cost of one iteration along the critical path: max(largest island, total / threads) rows.
 // In `adaptive` mode times come from the wall clock and the per-row costs are learned online; in
 // `model` mode both come from the cost model alone, so decisions are deterministic.
+//
+// Learning: the solve costs p + n·q per critical row, p the once-per-step part (rows built, warm
+// started, stored) and q one sweep, n the sweeps run along the critical path. The world times both
+// parts on the threads that run them; their ratio splits the measured solve time, and p and q are
+// averaged from step to step. Fitting one scale at the cost model's p/q ratio instead was wrong
+// whenever the ratio was: a ratio 3x too low made every extra sweep look 2x dearer than it was,
+// and the controller settled at half the budget.
 #pragma once
 
 #include "haif/cost_model.h"
@@ -17,7 +24,7 @@ struct AdaptiveSettings {
   int iMin = 4;
   int iMax = 64;
   int maxStepUp = 2;        ///< I rises by at most this much per step (smoothing); it falls at once
-  double learnRate = 0.15;  ///< EMA weight of a new measurement of the per-row cost
+  double learnRate = 0.15;  ///< EMA weight of a new measurement of the per-row costs
 };
 
 class AdaptiveController final : public IterationController {
@@ -35,7 +42,7 @@ class AdaptiveController final : public IterationController {
   int threadsFor(const ControlContext& ctx) const;
 
  private:
-  CostModel model_;
+  CostModel model_;  // as given (calibrated or default); adaptive mode learns its per-row costs
   AdaptiveSettings s_;
   bool useClock_;
   double postMs_ = -1.0;  // learned integration time (adaptive mode)

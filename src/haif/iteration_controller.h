@@ -28,6 +28,10 @@ struct SolveObservation {
   int iterations = 0;               ///< I that was chosen
   double integrateMs = 0;           ///< measured time of integration + sleep after the solve
   double totalMs = 0;               ///< measured time of the whole step
+  /// Thread time (summed over threads) of the solve's once-per-step work and of its sweeps; their
+  /// ratio splits solveMs. Both 0: not measured (the model's ratio is used).
+  double fixedThreadMs = 0;
+  double sweepThreadMs = 0;
 };
 
 class IterationController {

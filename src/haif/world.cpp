@@ -49,7 +49,15 @@ void World::setThreads(int threads) {
   settings_.threads = std::max(1, threads);
   // The arena's worker threads are created once and reused by every step.
   arena_ = settings_.threads > 1 ? std::make_unique<tbb::task_arena>(settings_.threads) : nullptr;
+  phaseClocks_.assign(size_t(settings_.threads), PhaseClock{});
 }
+
+World::PhaseClock& World::phaseClock() {
+  const int slot = arena_ ? tbb::this_task_arena::current_thread_index() : 0;
+  return phaseClocks_[slot >= 0 && size_t(slot) < phaseClocks_.size() ? size_t(slot) : 0];
+}
+
+void World::resetPhaseClocks() { std::fill(phaseClocks_.begin(), phaseClocks_.end(), PhaseClock{}); }
 
 template <class F>
 void World::parallelFor(uint32_t n, uint32_t grain, F&& f) {
@@ -355,12 +363,23 @@ int World::relaxIterationsFor(int iterations) {
   return iterations >= 2 ? std::max(1, iterations / 4) : 0;
 }
 
-template <class F>
-void World::forEachIsland(F&& f) {
+template <class First, class Second>
+void World::forEachIslandTimed(First&& first, Second&& second, bool firstIsSweeps) {
   const uint32_t batches = static_cast<uint32_t>(batchStart_.size()) - 1;
   parallelFor(batches, 1, [&](uint32_t begin, uint32_t end) {
-    for (uint32_t b = begin; b < end; ++b)
-      for (uint32_t k = batchStart_[b]; k < batchStart_[b + 1]; ++k) f(k);
+    for (uint32_t b = begin; b < end; ++b) {
+      // A batch is ~kBatchRows rows: its constraints stay in cache from one phase to the next.
+      const auto t0 = Clock::now();
+      for (uint32_t k = batchStart_[b]; k < batchStart_[b + 1]; ++k) first(k);
+      const auto t1 = Clock::now();
+      for (uint32_t k = batchStart_[b]; k < batchStart_[b + 1]; ++k) second(k);
+      const auto t2 = Clock::now();
+      const double a = std::chrono::duration<double, std::milli>(t1 - t0).count();
+      const double c = std::chrono::duration<double, std::milli>(t2 - t1).count();
+      PhaseClock& pc = phaseClock();
+      pc.fixedMs += firstIsSweeps ? c : a;
+      pc.sweepMs += firstIsSweeps ? a : c;
+    }
   });
 }
 
@@ -435,7 +454,7 @@ void World::solveIslands(int iterations) {
   const SolverParams sp = solverParams();
   const float tol = settings_.residualTolerance;
   const int iMin = std::min(controller_->iMin, iterations);
-  forEachIsland([&](uint32_t k) {
+  auto prepareIsland = [&](uint32_t k) {
     const Island& isl = islands_.islands[k];
     ContactConstraint* cs = constraints_.data() + isl.firstContact;
     const uint32_t* ids = islands_.contacts.data() + isl.firstContact;
@@ -449,6 +468,10 @@ void World::solveIslands(int iterations) {
       return SweepResult{};
     });
     if (isl.jointCount > 0) prepareJoints(k, sp);
+  };
+  auto sweepIslandMain = [&](uint32_t k) {
+    const Island& isl = islands_.islands[k];
+    ContactConstraint* cs = constraints_.data() + isl.firstContact;
     // Momentum on the contacts of joint-free islands; a joint tree is solved exactly every sweep.
     const bool cg = settings_.accelerate && isl.jointCount == 0;
     const uint32_t n = isl.contactCount;
@@ -480,7 +503,8 @@ void World::solveIslands(int iterations) {
     }
     islandIterations_[k] = isl.contactCount + isl.jointCount > 0 ? it : 0;
     islandResidual_[k] = residual;
-  });
+  };
+  forEachIslandTimed(prepareIsland, sweepIslandMain);
   if (tol > 0.0f && iterations > 0) shareSpareIterations(iterations);
 }
 
@@ -505,7 +529,7 @@ void World::shareSpareIterations(int iterations) {
     any = true;
   }
   if (!any) return;
-  forEachIsland([&](uint32_t k) {
+  forEachIslandTimed([](uint32_t) {}, [&](uint32_t k) {  // sweeps only
     int it = 0;
     float residual = islandResidual_[k];
     while (it < islandExtra_[k] && residual >= tol) {
@@ -518,9 +542,11 @@ void World::shareSpareIterations(int iterations) {
 }
 
 void World::relaxIslands(int relaxIterations) {
-  forEachIsland([&](uint32_t k) {
-    const Island& isl = islands_.islands[k];
+  auto relax = [&](uint32_t k) {
     for (int it = 0; it < relaxIterations; ++it) sweepIsland(k, false);
+  };
+  auto store = [&](uint32_t k) {
+    const Island& isl = islands_.islands[k];
     const ContactConstraint* cs = constraints_.data() + isl.firstContact;
     if (layoutOf_[k] >= 0)
       parallelFor(isl.contactCount, 1024, [&](uint32_t b, uint32_t e) { storeImpulses(cs + b, e - b, contacts_.data()); });
@@ -528,7 +554,8 @@ void World::relaxIslands(int relaxIterations) {
       storeImpulses(cs, isl.contactCount, contacts_.data());
     if (isl.jointCount > 0) finishJoints(k);
     if (isl.contactCount + isl.jointCount > 0) islandIterations_[k] += relaxIterations;
-  });
+  };
+  forEachIslandTimed(relax, store, /*firstIsSweeps=*/true);
 }
 
 double World::measureSolveError(int iterations) {
@@ -555,6 +582,7 @@ double World::measureSolveError(int iterations) {
   bodies_.v = saveV_;
   bodies_.w = saveW_;
   measurementMs_ = msSince(t0);  // the reference solve is measurement, not step time
+  resetPhaseClocks();
   solveIslands(iterations);
   double num = 0.0, den = 0.0, massSum = 0.0;
   for (uint32_t i = 0; i < n; ++i) {
@@ -597,6 +625,7 @@ void World::solve(int iterations) {
   }
   if (m == 0) batchStart_.push_back(0);
 
+  resetPhaseClocks();
   const bool measure = solveErrorEvery_ > 0 && stepCount_ % uint64_t(solveErrorEvery_) == 0 && m > 0;
   if (measure) stats_.solveError = measureSolveError(iterations);
   else solveIslands(iterations);
@@ -781,9 +810,6 @@ void World::step() {
   solve(iterations - relax);
   stats_.solveMs = msSince(t1) - measurementMs_;
   SolveObservation obs;
-  obs.solveMs = stats_.solveMs;
-  obs.rowIterations = stats_.rowIterations;
-  obs.criticalRowIterations = uint64_t(islands_.largestRows) * uint64_t(stats_.iterationsMax);
   obs.iterations = iterations;
 
   // 7. Integration and sleep.
@@ -797,6 +823,14 @@ void World::step() {
   const double relaxMs = msSince(t3);
   stats_.solveMs += relaxMs;
   summariseIterations();
+  // What the solve did, relax sweeps included, once the counts are summed (not before).
+  obs.solveMs = stats_.solveMs;
+  obs.rowIterations = stats_.rowIterations;
+  obs.criticalRowIterations = uint64_t(islands_.largestRows) * uint64_t(stats_.iterationsMax);
+  for (const PhaseClock& pc : phaseClocks_) {
+    obs.fixedThreadMs += pc.fixedMs;
+    obs.sweepThreadMs += pc.sweepMs;
+  }
   if (settings_.sleeping) {
     stats_.stages |= kStageSleep;
     detectSleep();

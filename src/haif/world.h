@@ -130,7 +130,12 @@ class World {
   void relaxIslands(int relaxIterations);
   void summariseIterations();
   SolverParams solverParams() const;
-  template <class F> void forEachIsland(F&& f);
+  /// Runs over the islands in parallel, batched (batchStart_), in two phases per batch: first(k) for
+  /// all its islands then second(k),
+  /// timing both on the thread that runs the batch: one phase is once-per-step work, the other
+  /// sweeps (see PhaseClock).
+  template <class First, class Second>
+  void forEachIslandTimed(First&& first, Second&& second, bool firstIsSweeps = false);
   double measureSolveError(int iterations);
   void detectSleep();
   void orderContactsTopDown();
@@ -184,6 +189,14 @@ class World {
 
   std::unique_ptr<IterationController> controller_;
   std::unique_ptr<tbb::task_arena> arena_;
+  // Thread time of the solve's once-per-step work (rows built, warm started, stored) and of its
+  // sweeps, per worker slot; the controller splits the measured solve time by their ratio.
+  struct alignas(64) PhaseClock {
+    double fixedMs = 0.0, sweepMs = 0.0;
+  };
+  std::vector<PhaseClock> phaseClocks_;
+  PhaseClock& phaseClock();
+  void resetPhaseClocks();
   int solveErrorEvery_ = 0;
   double measurementMs_ = 0.0;  // time of this step's reference solve, excluded from its timings
   std::vector<Vec3> saveV_, saveW_, startV_, startW_, refV_, refW_;

@@ -194,3 +194,39 @@ TEST(AdaptiveController, GenerousBudgetInWorldMissesNothing) {
 
 }  // namespace
 }  // namespace haif
+
+namespace haif {
+namespace {
+
+// A solve whose once-per-step part is 7x a sweep (the model says 2x) and whose sweep is 1.5x the
+// model's. With the measured split of the solve the controller must learn both, not one scale at
+// the model's ratio, and then spend the budget the formula gives with the true costs.
+TEST(AdaptiveController, LearnsPrepareAndSweepCostsSeparately) {
+  CostModel m;
+  AdaptiveSettings s;
+  AdaptiveController ac(m, s, true);
+  const ControlContext c = context(6.0, 0.5, 3000, 300, 1, 100);
+  const double crit = CostModel::criticalRows(c.totalRows, c.largestRows, c.threads, m.parallelEfficiency);
+  const double sweep = 1.5 * m.msPerRowIteration, prepare = 7.0 * sweep;
+  const double post = 0.05;
+  int I = 0;
+  for (int k = 0; k < 60; ++k) {
+    I = ac.choose(c);
+    SolveObservation obs;
+    obs.iterations = I;
+    obs.rowIterations = uint64_t(c.totalRows) * uint64_t(I);
+    obs.criticalRowIterations = uint64_t(c.largestRows) * uint64_t(I);
+    obs.solveMs = crit * (prepare + I * sweep);
+    obs.fixedThreadMs = crit * prepare;  // one thread: thread time is wall time
+    obs.sweepThreadMs = crit * I * sweep;
+    obs.integrateMs = post;
+    ac.observe(c, obs);
+  }
+  EXPECT_NEAR(ac.iterationMs(c), sweep * crit, 0.1 * sweep * crit);
+  const int ideal = int(std::floor(s.alpha * (c.budgetMs - c.elapsedMs - post - prepare * crit) / (sweep * crit)));
+  ASSERT_GT(ideal, s.iMin + 2) << "test set-up: the budget must leave room above iMin";
+  EXPECT_NEAR(I, ideal, 1);
+}
+
+}  // namespace
+}  // namespace haif
