@@ -7,7 +7,7 @@
 namespace haif::render {
 namespace {
 
-// A sample counts as inside a face only this far (pixels) inside every edge: more than the
+// A sample counts as inside a box's outline only this far (pixels) inside every edge: more than the
 // GPU's sub-pixel snapping (1/256 px on llvmpipe) and the rounding of the two vertex transforms.
 constexpr float kEdgeMargin = 1.f / 32.f;
 // A face is tested on every pixel within this distance (pixels) of its projection.

@@ -3,11 +3,13 @@
 // so a face hidden behind other boxes costs as much as a visible one; dropping it before
 // rasterisation saves that work without changing the picture.
 //
-// Conservative by construction: a small software rasteriser marks an MSAA sample covered only when
-// it lies inside a drawn front face of a box (shrunk by a margin for rounding), and a face is hidden
-// only when every sample of every pixel its projection could touch is covered by faces that are
-// all nearer than the face's nearest corner. What covers a hidden face may itself be hidden, but
-// then something nearer still covers it, so the picture keeps every visible sample.
+// Conservative by construction: a small software rasteriser marks an MSAA sample (at the GPU's own
+// sample positions) covered only when it lies inside the outline of a box, shrunk by a margin for
+// rounding, and a face is hidden only when every sample of every pixel its projection could touch
+// is covered by boxes whose front surfaces are all nearer than the face's nearest corner. Parts of
+// an outline whose faces HiddenBoxFaces drops are covered by the neighbour those faces lie in (up
+// to its contact tolerance). What covers a hidden face may itself be hidden, but then something
+// nearer still covers it, so the picture keeps every visible sample.
 #pragma once
 
 #include <cstdint>
