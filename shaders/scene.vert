@@ -57,14 +57,16 @@ vec3 rotate(vec4 q, vec3 v) {
   return v + q.w * t + cross(q.xyz, t);
 }
 
-// Box faces the renderer found inside a neighbouring box (bit 2 * axis + (normal > 0)) are sent
-// outside the clip volume; all corners of a face move together, so its triangles are dropped whole.
+// Box faces the renderer found inside a neighbouring box (bits 0-5: bit 2 * axis + (normal > 0)) or
+// hidden from the camera behind nearer boxes (the same bits shifted by 6) are sent outside the clip
+// volume; all corners of a face move together, so its triangles are dropped whole.
 bool hiddenFace(vec3 normal) {
   if (iHiddenFaces < 0.5) return false;
   vec3 a = abs(normal);
   int axis = a.x > 0.5 ? 0 : (a.y > 0.5 ? 1 : 2);
   int bit = 2 * axis + (normal[axis] > 0.0 ? 1 : 0);
-  return ((int(iHiddenFaces) >> bit) & 1) != 0;
+  int bits = int(iHiddenFaces);
+  return (((bits | (bits >> 6)) >> bit) & 1) != 0;
 }
 
 void main() {

@@ -21,12 +21,13 @@ vec3 rotate(vec4 q, vec3 v) {
 
 // Box faces the renderer found inside a neighbouring box (bit 2 * axis + (normal > 0)) are sent
 // outside the clip volume; all corners of a face move together, so its triangles are dropped whole.
+// Bits 6-11 (faces the camera cannot see) are ignored here: those faces may still cast shadows.
 bool hiddenFace(vec3 normal) {
   if (iHiddenFaces < 0.5) return false;
   vec3 a = abs(normal);
   int axis = a.x > 0.5 ? 0 : (a.y > 0.5 ? 1 : 2);
   int bit = 2 * axis + (normal[axis] > 0.0 ? 1 : 0);
-  return ((int(iHiddenFaces) >> bit) & 1) != 0;
+  return (((int(iHiddenFaces) & 63) >> bit) & 1) != 0;
 }
 
 void main() {

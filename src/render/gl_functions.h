@@ -16,6 +16,7 @@ class GlContext;
   X(PFNGLGETSTRINGPROC, GetString, "glGetString")                                   \
   X(PFNGLGETSTRINGIPROC, GetStringi, "glGetStringi")                                \
   X(PFNGLGETINTEGERVPROC, GetIntegerv, "glGetIntegerv")                             \
+  X(PFNGLGETMULTISAMPLEFVPROC, GetMultisamplefv, "glGetMultisamplefv")              \
   X(PFNGLENABLEPROC, Enable, "glEnable")                                            \
   X(PFNGLDISABLEPROC, Disable, "glDisable")                                         \
   X(PFNGLVIEWPORTPROC, Viewport, "glViewport")                                      \

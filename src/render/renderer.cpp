@@ -7,6 +7,7 @@
 #include <cstring>
 #include <unordered_map>
 
+#include "render/box_occlusion.h"
 #include "render/gl_context.h"
 #include "render/gl_functions.h"
 #include "render/hidden_box_faces.h"
@@ -24,7 +25,8 @@ namespace haif::render {
 namespace {
 
 // Per-instance record: position 3, quaternion 4, scale 3, capsule stretch 1, colour+emissive 4,
-// hidden box faces 1 (a HiddenBoxFaces mask as a float; 0 for other shapes).
+// hidden box faces 1 (as a float: a HiddenBoxFaces mask in bits 0-5, faces the camera cannot see
+// (BoxOcclusion) in bits 6-11, which only the main pass drops; 0 for other shapes).
 constexpr int kInstanceFloats = 16;
 constexpr GLsizei kInstanceStride = kInstanceFloats * sizeof(float);
 constexpr float kPlaneHalfSize = 1000.f;
@@ -46,6 +48,7 @@ struct GpuMesh {
 struct DrawGroup {
   const GpuMesh* mesh;
   size_t first, count;
+  size_t cameraCount;  // the main pass draws only the first cameraCount (the rest are hidden from the camera)
   int surface;
   bool cull;          // closed shapes only; open triangle meshes and planes are two-sided
   bool castsShadow;
@@ -84,6 +87,8 @@ struct Renderer::Impl {
   HiddenBoxFaces hiddenFaces;
   std::vector<BoxPose> boxPoses;      // boxes of this frame in draw order, for hiddenFaces
   std::vector<uint8_t> hiddenMasks;   // per entry of boxPoses
+  BoxOcclusion occlusion;
+  std::vector<uint8_t> occludedFaces, occludedBoxes;  // per dynamic box of boxPoses (BoxOcclusion::find)
   std::vector<uint8_t> readback;  // bottom-up rows, unless packInvert
   bool packInvert = false;        // GL_MESA_pack_invert: glReadPixels returns the top row first
   std::unique_ptr<TextRenderer> text;  // created on the first frame with the overlay enabled
@@ -196,6 +201,12 @@ struct Renderer::Impl {
                                       opt.width, opt.height);
     gl.FramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaaDepth);
     if (!checkFramebuffer("scene", error)) return false;
+    if (samples > 1) {
+      // Where the GPU puts its samples, so the occlusion test covers exactly those points.
+      std::vector<float> xy(2 * static_cast<size_t>(samples));
+      for (int s = 0; s < samples; ++s) gl.GetMultisamplefv(GL_SAMPLE_POSITION, static_cast<GLuint>(s), &xy[2 * s]);
+      occlusion.setSamples(xy.data(), samples);
+    }
 
     if (samples > 1) {
       gl.GenFramebuffers(1, &resolveFbo);
@@ -293,7 +304,7 @@ struct Renderer::Impl {
   }
 
   void pushInstance(Vec3 p, const float* q, Vec3 scale, float stretch, LinearColor c, float emissive,
-                    uint8_t hidden = 0) {
+                    unsigned hidden = 0) {
     float qn[4];
     normalizedQuat(q, qn);
     staging.insert(staging.end(), {p.x, p.y, p.z, qn[0], qn[1], qn[2], qn[3], scale.x, scale.y, scale.z,
@@ -319,11 +330,27 @@ struct Renderer::Impl {
       hiddenMasks.assign(boxPoses.size(), 0);
   }
 
+  // BoxOcclusion over the first `count` entries of boxPoses (the dynamic boxes, front to back).
+  void findOccludedBoxes(const ViewSetup& view, size_t count) {
+    if (!opt.cullOccludedBoxes) {
+      occludedFaces.assign(count, 0);
+      occludedBoxes.assign(count, 0);
+      return;
+    }
+    OcclusionView ov;
+    ov.viewProj = view.viewProj;
+    ov.eye = view.eye;
+    ov.zNear = view.zNear;
+    ov.width = opt.width, ov.height = opt.height;
+    occlusion.find(ov, boxPoses, count, hiddenMasks, occludedFaces, occludedBoxes);
+  }
+
   size_t instanceCount() const { return staging.size() / kInstanceFloats; }
 
-  void addGroup(const GpuMesh* mesh, size_t first, int surface, bool cull, bool casts) {
+  // A group of the instances pushed since `first`; the main pass draws the first cameraCount of them.
+  void addGroup(const GpuMesh* mesh, size_t first, int surface, bool cull, bool casts, size_t cameraCount = SIZE_MAX) {
     const size_t count = instanceCount() - first;
-    if (count) groups.push_back({mesh, first, count, surface, cull, casts});
+    if (count) groups.push_back({mesh, first, count, std::min(count, cameraCount), surface, cull, casts});
   }
 
   // Bounds of everything but the ground (for framing and the shadow frustum) and the draw kind of
@@ -372,7 +399,8 @@ struct Renderer::Impl {
   }
 
   // Sorts instances into draw groups (front to back inside each) and fills the staging buffer.
-  void buildInstances(const FrameInput& f, Vec3 eye) {
+  void buildInstances(const FrameInput& f, const ViewSetup& view) {
+    const Vec3 eye = view.eye;
     staging.clear();
     groups.clear();
     for (SortItem& it : order) {
@@ -386,15 +414,31 @@ struct Renderer::Impl {
 
     findHiddenBoxFaces(f);
     groundFaces.clear();
-    size_t groupStart = 0, boxIndex = 0;
-    for (size_t k = 0; k < order.size(); ++k) {
+    // The dynamic boxes come first (kBox sorts first): boxes the camera cannot see at all go after
+    // the others, so the main pass draws a prefix of the group and the shadow pass all of it.
+    size_t boxes = 0;
+    while (boxes < order.size() && order[boxes].kind == kBox) ++boxes;
+    findOccludedBoxes(view, boxes);
+    size_t seen = 0;
+    for (int hidden = 0; hidden < 2; ++hidden)
+      for (size_t k = 0; k < boxes; ++k) {
+        if (occludedBoxes[k] != hidden) continue;
+        const Instance& in = f.instances[order[k].index];
+        pushInstance({in.position[0], in.position[1], in.position[2]}, in.orientation,
+                     {in.halfExtents[0], in.halfExtents[1], in.halfExtents[2]}, 0.f, instanceColor(in, f.mode), 0.f,
+                     hiddenMasks[k] | (hidden ? 0u : static_cast<unsigned>(occludedFaces[k]) << 6));
+        seen += hidden ? 0 : 1;
+      }
+    addGroup(&box, 0, kSurfaceBox, true, true, seen);
+    size_t groupStart = instanceCount(), boxIndex = boxes;
+    for (size_t k = boxes; k < order.size(); ++k) {
       const SortItem& s = order[k];
       const Instance& in = f.instances[s.index];
       const Vec3 p{in.position[0], in.position[1], in.position[2]};
       const LinearColor c = instanceColor(in, f.mode);
       if (s.kind == kGroundBox || s.kind == kGroundPlane) addGroundFace(in, s.kind == kGroundBox);
       switch (s.kind) {
-        case kGroundBox: case kBox:
+        case kGroundBox:
           pushInstance(p, in.orientation, {in.halfExtents[0], in.halfExtents[1], in.halfExtents[2]}, 0.f, c, 0.f,
                        hiddenMasks[boxIndex++]);
           break;
@@ -408,7 +452,6 @@ struct Renderer::Impl {
       switch (s.kind) {
         case kGroundBox: addGroup(&box, groupStart, kSurfaceGround, true, false); break;
         case kGroundPlane: addGroup(&plane, groupStart, kSurfaceGround, false, false); break;
-        case kBox: addGroup(&box, groupStart, kSurfaceBox, true, true); break;
         case kSphere: addGroup(&sphere, groupStart, kSurfaceBody, true, true); break;
         case kCapsule: addGroup(&capsule, groupStart, kSurfaceBody, true, true); break;
         case kHull: addGroup(&meshes[s.meshId], groupStart, kSurfaceBody, true, true); break;
@@ -550,7 +593,7 @@ struct Renderer::Impl {
     float meanRadius = 0.5f;
     if (!classify(f, &bounds, &meanRadius, error)) return false;
     const ViewSetup view = computeView(f.camera, bounds, opt.width, opt.height, &framing);
-    buildInstances(f, view.eye);
+    buildInstances(f, view);
     const size_t groupsBeforeMarkers = groups.size();
     buildContactMarkers(f, meanRadius);
     uploadInstances();
@@ -639,7 +682,9 @@ struct Renderer::Impl {
       shade = PixelRect{};
     }
     int bound = -1;
-    for (const DrawGroup& g : groups) {
+    for (DrawGroup g : groups) {
+      g.count = g.cameraCount;  // without the instances hidden from the camera
+      if (!g.count) continue;
       if (g.surface == kSurfaceGround) {
         drawGroundGroup(g, shade);
         bound = -1;

@@ -29,6 +29,7 @@ struct RendererOptions {
   std::string fontPath = HAIF_FONT_PATH;   ///< TrueType font for the overlay (loaded on first use)
   float groundMinHalfExtent = 50.f;        ///< a static Box with x or z half extent >= this is the ground
   bool cullHiddenBoxFaces = true;  ///< skip box faces lying inside another box (HiddenBoxFaces); same picture
+  bool cullOccludedBoxes = true;   ///< skip boxes and box faces nearer boxes hide (BoxOcclusion); same picture
   bool timePhases = false;  ///< measure each phase of render() (adds a glFinish per phase: for profiling only)
 };
 

@@ -301,6 +301,51 @@ TEST(Renderer, DroppingHiddenBoxFacesKeepsThePicture) {
   }
 }
 
+TEST(Renderer, CullingOccludedBoxesKeepsThePicture) {
+  // Rows of touching stacks (hidden faces dropped too), a tilted box, a box floating in a gap and
+  // one resting askew on a stack, seen from several sides: boxes and faces behind others are left
+  // out of the main pass (BoxOcclusion), which must not change a single pixel; the shadow pass
+  // still draws them, so the shadows they cast stay too.
+  FrameInput f;
+  f.instances.push_back(groundBox());
+  int id = 1;
+  auto add = [&](float x, float y, float z) {
+    Instance b;
+    b.bodyId = static_cast<uint32_t>(id++);
+    b.position[0] = x, b.position[1] = y, b.position[2] = z;
+    f.instances.push_back(b);
+    return f.instances.size() - 1;
+  };
+  for (int sx = 0; sx < 4; ++sx)
+    for (int sz = 0; sz < 3; ++sz)
+      for (int h = 0; h < 2 + (sx + sz) % 4; ++h) add(1.6f * sx, 0.5f + h, 1.6f * sz);
+  add(0.8f, 2.2f, 1.6f);  // floating between two stacks
+  const size_t tilted = add(2.4f, 0.8f, -1.6f);
+  f.instances[tilted].orientation[0] = std::sin(0.3f), f.instances[tilted].orientation[3] = std::cos(0.3f);
+  const size_t askew = add(3.2f, 3.6f, 1.6f);
+  f.instances[askew].orientation[1] = std::sin(0.4f), f.instances[askew].orientation[3] = std::cos(0.4f);
+  RendererOptions on, off;
+  on.width = off.width = 320, on.height = off.height = 240;
+  off.cullOccludedBoxes = false;
+  std::string error;
+  auto withCull = Renderer::create(on, &error);
+  auto without = Renderer::create(off, &error);
+  ASSERT_TRUE(withCull && without) << error;
+  const float eyes[5][3] = {{-6.f, 4.f, 12.f}, {14.f, 3.f, -6.f}, {2.4f, 14.f, 1.f}, {-8.f, 1.f, 1.6f}, {12.f, 6.f, 12.f}};
+  for (const auto& eye : eyes) {
+    f.camera.automatic = false;
+    for (int k = 0; k < 3; ++k) f.camera.eye[k] = eye[k];
+    f.camera.target[0] = 2.4f, f.camera.target[1] = 1.f, f.camera.target[2] = 1.6f;
+    std::vector<uint8_t> a, b;
+    ASSERT_TRUE(withCull->render(f, a, &error)) << error;
+    ASSERT_TRUE(without->render(f, b, &error)) << error;
+    ASSERT_EQ(a.size(), b.size());
+    size_t differentBytes = 0;
+    for (size_t i = 0; i < a.size(); ++i) differentBytes += a[i] != b[i];
+    EXPECT_EQ(differentBytes, 0u) << "eye " << eye[0] << "," << eye[1] << "," << eye[2];
+  }
+}
+
 TEST(Renderer, EveryPixelIsRepaintedEachFrame) {
   // The colour buffer is never cleared: the sky strip (which starts at the ground's far edge) and
   // the geometry must together paint every pixel. A frame filled with a red box, then an ordinary
