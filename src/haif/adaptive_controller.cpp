@@ -42,7 +42,12 @@ int AdaptiveController::choose(const ControlContext& ctx) {
 
 void AdaptiveController::observe(const ControlContext& ctx, const SolveObservation& obs) {
   if (!useClock_) return;  // model mode never learns from the clock: it must stay deterministic
-  const double lr = s_.learnRate;
+  // The first step pays one-time costs (arrays grow, pages fault in, every pair is new): it says
+  // little about the next ones. After it, a plain mean over the first observations, then the moving
+  // average: measured steps replace the (uncalibrated) model at once instead of over ~10 steps.
+  if (ctx.step == 0) return;
+  ++observed_;
+  const double lr = std::max(s_.learnRate, 1.0 / double(observed_));
   postMs_ = postMs_ < 0.0 ? obs.integrateMs : (1.0 - lr) * postMs_ + lr * obs.integrateMs;
   const int threads = threadsFor(ctx);
   const double crit = CostModel::criticalRows(ctx.totalRows, ctx.largestRows, threads, model_.parallelEfficiency);

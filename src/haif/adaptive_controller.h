@@ -46,6 +46,7 @@ class AdaptiveController final : public IterationController {
   AdaptiveSettings s_;
   bool useClock_;
   double postMs_ = -1.0;  // learned integration time (adaptive mode)
+  int observed_ = 0;      // steps learned from so far
   int previous_ = -1;
 };
 

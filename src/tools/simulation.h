@@ -20,7 +20,7 @@ struct SolverSpec {
   int iMin = 4;                 ///< adaptive/model
   std::string replayPath;       ///< replay: stats.csv of the run to replay
   std::string calibrationPath;  ///< adaptive/model: cost model file ("" = built-in defaults)
-  float residualTolerance = 1e-3f;  ///< adaptive/model: islands stop below this correction (m/s)
+  float residualTolerance = 1e-5f;  ///< adaptive/model: islands stop below this correction (m/s)
 };
 
 /// Parses "fixed:10", "adaptive:4", "model:4", "replay:RUN/stats.csv".
