@@ -107,6 +107,25 @@ TEST(AdaptiveController, RisesByAtMostMaxStepUpButFallsAtOnce) {
   EXPECT_EQ(dropped, std::clamp(expectedUnclamped(m, s, low), s.iMin, s.iMax)) << "must fall at once";
 }
 
+TEST(AdaptiveController, FirstStepIsNotLearnedFrom) {
+  // Step 0 pays one-time costs (every pair new, arrays grow): a slow step 0 changes nothing.
+  CostModel m;
+  AdaptiveController ac(m, AdaptiveSettings{}, true);
+  const ControlContext c = context(4.0, 0.0);
+  const double before = ac.iterationMs(c);
+  SolveObservation obs;
+  obs.iterations = 4;
+  obs.rowIterations = uint64_t(c.totalRows) * 4u;
+  obs.solveMs = 100.0;
+  obs.integrateMs = 0.01;
+  ac.observe(c, obs);
+  EXPECT_EQ(ac.iterationMs(c), before);
+  ControlContext next = c;
+  next.step = 1;
+  ac.observe(next, obs);
+  EXPECT_GT(ac.iterationMs(next), 10.0 * before) << "from step 1 on, measured steps replace the model at once";
+}
+
 TEST(AdaptiveController, ModelModeIgnoresTheClock) {
   CostModel m;
   AdaptiveSettings s;
@@ -138,7 +157,11 @@ TEST(AdaptiveController, LearnsFromSlowSolves) {
   obs.criticalRowIterations = uint64_t(c.largestRows) * uint64_t(before);
   obs.solveMs = 20.0 * (m.msPerRowPrepare + before * m.msPerRowIteration) * c.totalRows;  // 20x the model
   obs.integrateMs = 0.01;
-  for (int k = 0; k < 10; ++k) ac.observe(c, obs);
+  ControlContext later = c;
+  for (int k = 1; k <= 10; ++k) {  // step 0 is not learned from (one-time costs)
+    later.step = uint64_t(k);
+    ac.observe(later, obs);
+  }
   EXPECT_GT(ac.iterationMs(c), 2.0 * itBefore);
   EXPECT_LT(ac.choose(c), before);
 }
@@ -205,12 +228,13 @@ TEST(AdaptiveController, LearnsPrepareAndSweepCostsSeparately) {
   CostModel m;
   AdaptiveSettings s;
   AdaptiveController ac(m, s, true);
-  const ControlContext c = context(6.0, 0.5, 3000, 300, 1, 100);
+  ControlContext c = context(6.0, 0.5, 3000, 300, 1, 100);
   const double crit = CostModel::criticalRows(c.totalRows, c.largestRows, c.threads, m.parallelEfficiency);
   const double sweep = 1.5 * m.msPerRowIteration, prepare = 7.0 * sweep;
   const double post = 0.05;
   int I = 0;
   for (int k = 0; k < 60; ++k) {
+    c.step = uint64_t(k);
     I = ac.choose(c);
     SolveObservation obs;
     obs.iterations = I;
