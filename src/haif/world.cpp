@@ -6,6 +6,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include <chrono>
 #include <cmath>
@@ -24,6 +25,8 @@ double msSince(Clock::time_point t0) {
 /// Rows of an island whose total is below this are batched with their neighbours into one task,
 /// so thousands of tiny islands do not each pay a task's overhead.
 constexpr uint32_t kBatchRows = 1024;
+// Islands with at least this many contacts have their top-down order sorted in parallel.
+constexpr uint32_t kParallelSortContacts = 8192;
 
 /// An old contact point this close (m) to a new one passes on its impulse when ids do not match.
 constexpr float kWarmStartMatchDistance = 0.02f;
@@ -661,15 +664,29 @@ void World::summariseIterations() {
 void World::orderContactsTopDown() {
   const Vec3 up = settings_.gravity.squaredNorm() > 0.0f ? Vec3(-settings_.gravity.normalized()) : Vec3::UnitY();
   contactHeight_.resize(contacts_.size());
-  for (uint32_t ci : islands_.contacts)
-    contactHeight_[ci] = up.dot(bodies_.xf[contacts_[ci].a].p + bodies_.xf[contacts_[ci].b].p);
-  for (const Island& isl : islands_.islands) {
-    uint32_t* first = islands_.contacts.data() + isl.firstContact;
-    std::sort(first, first + isl.contactCount, [&](uint32_t x, uint32_t y) {
-      const float hx = contactHeight_[x], hy = contactHeight_[y];
-      return hx > hy || (hx == hy && x < y);  // index breaks ties: deterministic
-    });
-  }
+  const uint32_t* ids = islands_.contacts.data();
+  parallelFor(uint32_t(islands_.contacts.size()), 4096, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t j = begin; j < end; ++j) {
+      const Contact& c = contacts_[ids[j]];
+      contactHeight_[ids[j]] = up.dot(bodies_.xf[c.a].p + bodies_.xf[c.b].p);
+    }
+  });
+  auto higher = [&](uint32_t x, uint32_t y) {
+    const float hx = contactHeight_[x], hy = contactHeight_[y];
+    return hx > hy || (hx == hy && x < y);  // index breaks ties: a total order, so deterministic
+  };
+  // Islands own disjoint ranges: sorted concurrently; a giant island is sorted in parallel itself.
+  const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
+  parallelFor(m, 4, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t k = begin; k < end; ++k) {
+      const Island& isl = islands_.islands[k];
+      uint32_t* first = islands_.contacts.data() + isl.firstContact;
+      if (arena_ && isl.contactCount >= kParallelSortContacts)
+        arena_->execute([&] { tbb::parallel_sort(first, first + isl.contactCount, higher); });
+      else
+        std::sort(first, first + isl.contactCount, higher);
+    }
+  });
 }
 
 // A contact that just formed has no impulse to warm start from. In a pile created at rest every
@@ -693,30 +710,39 @@ void World::estimateColdImpulses() {
     const uint32_t u = slope > 0.0f ? c.b : c.a;
     return bodies_.kind[u] == BodyKind::Dynamic && !bodies_.asleep[u] ? int64_t(u) : -1;
   };
-  for (uint32_t i : islands_.bodies) {
-    carried_[i] = 0.0f;
-    supports_[i] = 0;
-  }
-  float slope;
-  for (uint32_t ci : islands_.contacts) {
-    const int64_t u = upper(contacts_[ci], slope);
-    if (u >= 0 && supports_[u] < 0xffff) ++supports_[u];
-  }
-  // Islands' contacts are in top-down order: a body's load is complete before its supports are met.
-  for (uint32_t ci : islands_.contacts) {
-    Contact& c = contacts_[ci];
-    const int64_t u = upper(c, slope);
-    if (u < 0) continue;
-    const uint32_t lower = uint32_t(u) == c.a ? c.b : c.a;
-    const float share = (bodies_.mass[u] * g * dt + carried_[u]) / float(supports_[u]);
-    if (bodies_.kind[lower] == BodyKind::Dynamic) carried_[lower] += share;
-    bool cold = true;
-    for (int i = 0; i < c.manifold.count; ++i) cold = cold && c.normalImpulse[i] == 0.0f;
-    const float vn = std::fabs(c.manifold.points[0].normal.dot(bodies_.v[c.b] - bodies_.v[c.a]));
-    if (!cold || vn > restSpeed) continue;
-    const float perPoint = share / (std::fabs(slope) * float(c.manifold.count));
-    for (int i = 0; i < c.manifold.count; ++i) c.normalImpulse[i] = perPoint;
-  }
+  // Islands share no dynamic body (a static lower body receives nothing): they run concurrently.
+  const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
+  parallelFor(m, 4, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t k = begin; k < end; ++k) {
+      const Island& isl = islands_.islands[k];
+      const uint32_t* bodies = islands_.bodies.data() + isl.firstBody;
+      const uint32_t* contacts = islands_.contacts.data() + isl.firstContact;
+      for (uint32_t j = 0; j < isl.bodyCount; ++j) {
+        carried_[bodies[j]] = 0.0f;
+        supports_[bodies[j]] = 0;
+      }
+      float slope;
+      for (uint32_t j = 0; j < isl.contactCount; ++j) {
+        const int64_t u = upper(contacts_[contacts[j]], slope);
+        if (u >= 0 && supports_[u] < 0xffff) ++supports_[u];
+      }
+      // Islands' contacts are in top-down order: a body's load is complete before its supports are met.
+      for (uint32_t j = 0; j < isl.contactCount; ++j) {
+        Contact& c = contacts_[contacts[j]];
+        const int64_t u = upper(c, slope);
+        if (u < 0) continue;
+        const uint32_t lower = uint32_t(u) == c.a ? c.b : c.a;
+        const float share = (bodies_.mass[u] * g * dt + carried_[u]) / float(supports_[u]);
+        if (bodies_.kind[lower] == BodyKind::Dynamic && !bodies_.asleep[lower]) carried_[lower] += share;
+        bool cold = true;
+        for (int i = 0; i < c.manifold.count; ++i) cold = cold && c.normalImpulse[i] == 0.0f;
+        const float vn = std::fabs(c.manifold.points[0].normal.dot(bodies_.v[c.b] - bodies_.v[c.a]));
+        if (!cold || vn > restSpeed) continue;
+        const float perPoint = share / (std::fabs(slope) * float(c.manifold.count));
+        for (int i = 0; i < c.manifold.count; ++i) c.normalImpulse[i] = perPoint;
+      }
+    }
+  });
 }
 
 // ---- sleep -------------------------------------------------------------------------------
