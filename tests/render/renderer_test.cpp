@@ -262,43 +262,57 @@ int differingPixels(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b
   return n;
 }
 
+// Unit boxes added to a frame, ids from 1 (the ground is instance 0); returns the instance index.
+struct BoxScene {
+  FrameInput frame;
+  uint32_t nextId = 1;
+  BoxScene() { frame.instances.push_back(groundBox()); }
+  size_t add(float x, float y, float z) {
+    Instance b;
+    b.bodyId = nextId++;
+    b.position[0] = x, b.position[1] = y, b.position[2] = z;
+    frame.instances.push_back(b);
+    return frame.instances.size() - 1;
+  }
+};
+
+// Renders `f` from `eye` towards `target` with two renderers whose options differ only in `off`'s
+// switched-off feature; calls check(on, off) with both images.
+template <class Check>
+void compareFromEye(const RendererOptions& on, const RendererOptions& off, FrameInput& f, const float eye[3],
+                    const float target[3], Check&& check) {
+  std::string error;
+  auto a = Renderer::create(on, &error);
+  auto b = Renderer::create(off, &error);
+  ASSERT_TRUE(a && b) << error;
+  f.camera.automatic = false;
+  for (int k = 0; k < 3; ++k) f.camera.eye[k] = eye[k], f.camera.target[k] = target[k];
+  std::vector<uint8_t> ia, ib;
+  ASSERT_TRUE(a->render(f, ia, &error)) << error;
+  ASSERT_TRUE(b->render(f, ib, &error)) << error;
+  check(ia, ib);
+}
+
 TEST(Renderer, DroppingHiddenBoxFacesKeepsThePicture) {
   // Boxes side by side, stacked, on the ground, one tilted and one lifted by a visible gap, seen
   // from several sides: dropping the faces HiddenBoxFaces finds must change at most the odd
   // anti-aliased sample on a seam. A wrong face bit in the shaders would remove whole faces.
-  FrameInput f;
-  f.instances.push_back(groundBox());
-  int id = 1;
-  auto add = [&](float x, float y, float z) {
-    Instance b;
-    b.bodyId = static_cast<uint32_t>(id++);
-    b.position[0] = x, b.position[1] = y, b.position[2] = z;
-    f.instances.push_back(b);
-    return f.instances.size() - 1;
-  };
+  BoxScene scene;
   for (int x = 0; x < 3; ++x)
-    for (int z = 0; z < 2; ++z) add(static_cast<float>(x), 0.5f, static_cast<float>(z));
-  add(0.f, 1.5f, 0.f), add(1.f, 1.5f, 0.f), add(0.f, 2.5f, 0.f);
-  add(2.f, 1.6f, 1.f);  // a 10 cm gap one can see through
-  const size_t tilted = add(4.f, 0.75f, 0.f);
-  f.instances[tilted].orientation[2] = std::sin(0.2f), f.instances[tilted].orientation[3] = std::cos(0.2f);
+    for (int z = 0; z < 2; ++z) scene.add(static_cast<float>(x), 0.5f, static_cast<float>(z));
+  scene.add(0.f, 1.5f, 0.f), scene.add(1.f, 1.5f, 0.f), scene.add(0.f, 2.5f, 0.f);
+  scene.add(2.f, 1.6f, 1.f);  // a 10 cm gap one can see through
+  Instance& tilted = scene.frame.instances[scene.add(4.f, 0.75f, 0.f)];
+  tilted.orientation[2] = std::sin(0.2f), tilted.orientation[3] = std::cos(0.2f);
   RendererOptions on, off;
   on.width = off.width = 320, on.height = off.height = 240;
   off.cullHiddenBoxFaces = false;
-  std::string error;
-  auto withCull = Renderer::create(on, &error);
-  auto without = Renderer::create(off, &error);
-  ASSERT_TRUE(withCull && without) << error;
   const float eyes[4][3] = {{-4.f, 4.f, 7.f}, {8.f, 3.f, -5.f}, {1.f, 9.f, 0.5f}, {6.f, 1.2f, 6.f}};
-  for (const auto& eye : eyes) {
-    f.camera.automatic = false;
-    for (int k = 0; k < 3; ++k) f.camera.eye[k] = eye[k];
-    f.camera.target[0] = 1.5f, f.camera.target[1] = 1.f, f.camera.target[2] = 0.5f;
-    std::vector<uint8_t> a, b;
-    ASSERT_TRUE(withCull->render(f, a, &error)) << error;
-    ASSERT_TRUE(without->render(f, b, &error)) << error;
-    EXPECT_LE(differingPixels(a, b), 6) << "eye " << eye[0] << "," << eye[1] << "," << eye[2];
-  }
+  const float target[3] = {1.5f, 1.f, 0.5f};
+  for (const auto& eye : eyes)
+    compareFromEye(on, off, scene.frame, eye, target, [&](const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+      EXPECT_LE(differingPixels(a, b), 6) << "eye " << eye[0] << "," << eye[1] << "," << eye[2];
+    });
 }
 
 TEST(Renderer, CullingOccludedBoxesKeepsThePicture) {
@@ -306,44 +320,27 @@ TEST(Renderer, CullingOccludedBoxesKeepsThePicture) {
   // one resting askew on a stack, seen from several sides: boxes and faces behind others are left
   // out of the main pass (BoxOcclusion), which must not change a single pixel; the shadow pass
   // still draws them, so the shadows they cast stay too.
-  FrameInput f;
-  f.instances.push_back(groundBox());
-  int id = 1;
-  auto add = [&](float x, float y, float z) {
-    Instance b;
-    b.bodyId = static_cast<uint32_t>(id++);
-    b.position[0] = x, b.position[1] = y, b.position[2] = z;
-    f.instances.push_back(b);
-    return f.instances.size() - 1;
-  };
+  BoxScene scene;
   for (int sx = 0; sx < 4; ++sx)
     for (int sz = 0; sz < 3; ++sz)
-      for (int h = 0; h < 2 + (sx + sz) % 4; ++h) add(1.6f * sx, 0.5f + h, 1.6f * sz);
-  add(0.8f, 2.2f, 1.6f);  // floating between two stacks
-  const size_t tilted = add(2.4f, 0.8f, -1.6f);
-  f.instances[tilted].orientation[0] = std::sin(0.3f), f.instances[tilted].orientation[3] = std::cos(0.3f);
-  const size_t askew = add(3.2f, 3.6f, 1.6f);
-  f.instances[askew].orientation[1] = std::sin(0.4f), f.instances[askew].orientation[3] = std::cos(0.4f);
+      for (int h = 0; h < 2 + (sx + sz) % 4; ++h) scene.add(1.6f * sx, 0.5f + h, 1.6f * sz);
+  scene.add(0.8f, 2.2f, 1.6f);  // floating between two stacks
+  Instance& tilted = scene.frame.instances[scene.add(2.4f, 0.8f, -1.6f)];
+  tilted.orientation[0] = std::sin(0.3f), tilted.orientation[3] = std::cos(0.3f);
+  Instance& askew = scene.frame.instances[scene.add(3.2f, 3.6f, 1.6f)];
+  askew.orientation[1] = std::sin(0.4f), askew.orientation[3] = std::cos(0.4f);
   RendererOptions on, off;
   on.width = off.width = 320, on.height = off.height = 240;
   off.cullOccludedBoxes = false;
-  std::string error;
-  auto withCull = Renderer::create(on, &error);
-  auto without = Renderer::create(off, &error);
-  ASSERT_TRUE(withCull && without) << error;
   const float eyes[5][3] = {{-6.f, 4.f, 12.f}, {14.f, 3.f, -6.f}, {2.4f, 14.f, 1.f}, {-8.f, 1.f, 1.6f}, {12.f, 6.f, 12.f}};
-  for (const auto& eye : eyes) {
-    f.camera.automatic = false;
-    for (int k = 0; k < 3; ++k) f.camera.eye[k] = eye[k];
-    f.camera.target[0] = 2.4f, f.camera.target[1] = 1.f, f.camera.target[2] = 1.6f;
-    std::vector<uint8_t> a, b;
-    ASSERT_TRUE(withCull->render(f, a, &error)) << error;
-    ASSERT_TRUE(without->render(f, b, &error)) << error;
-    ASSERT_EQ(a.size(), b.size());
-    size_t differentBytes = 0;
-    for (size_t i = 0; i < a.size(); ++i) differentBytes += a[i] != b[i];
-    EXPECT_EQ(differentBytes, 0u) << "eye " << eye[0] << "," << eye[1] << "," << eye[2];
-  }
+  const float target[3] = {2.4f, 1.f, 1.6f};
+  for (const auto& eye : eyes)
+    compareFromEye(on, off, scene.frame, eye, target, [&](const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+      ASSERT_EQ(a.size(), b.size());
+      size_t differentBytes = 0;
+      for (size_t i = 0; i < a.size(); ++i) differentBytes += a[i] != b[i];
+      EXPECT_EQ(differentBytes, 0u) << "eye " << eye[0] << "," << eye[1] << "," << eye[2];
+    });
 }
 
 TEST(Renderer, EveryPixelIsRepaintedEachFrame) {
