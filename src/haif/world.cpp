@@ -789,7 +789,7 @@ void World::step() {
   stats_.stages = kStageBroadPhase | kStageNarrowPhase | kStageSolve;
 
   // 1. External forces.
-  parallelFor(n, 2048, [&](uint32_t b, uint32_t e) { integrateVelocities(bodies_, b, e, settings_.gravity, dt); });
+  parallelFor(n, 512, [&](uint32_t b, uint32_t e) { integrateVelocities(bodies_, b, e, settings_.gravity, dt); });
   if (!water_.empty()) {
     stats_.stages |= kStageBuoyancy;
     for (const WaterVolume& w : water_) applyBuoyancy(bodies_, volume_, bounds_, w, settings_.gravity, dt);
@@ -840,7 +840,7 @@ void World::step() {
 
   // 7. Integration and sleep.
   const auto t2 = Clock::now();
-  parallelFor(n, 2048, [&](uint32_t b, uint32_t e) {
+  parallelFor(n, 512, [&](uint32_t b, uint32_t e) {
     integratePositions(bodies_, b, e, dt, settings_.sleepLinear, settings_.sleepAngular);
   });
   const auto t3 = Clock::now();
