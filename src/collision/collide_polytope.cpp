@@ -63,13 +63,14 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
     if (s > margin) return 0;
     if (s > sepB) { sepB = s; faceB = f; }
   }
-  // Edge pairs.
+  // Edge pairs: one edge per direction is enough (parallel edges give the same axis; the touching
+  // one among them is found afterwards by supportingEdge).
   float sepE = -1e30f;
   int edgeA = -1, edgeB = -1;
   Vec3 edgeAxis = Vec3::Zero();
-  for (int i = 0; i < A.numEdges; ++i) {
+  for (int i = 0; i < A.numAxisEdges; ++i) {
     const Vec3 da = A.verts[A.edges[i].second] - A.verts[A.edges[i].first];
-    for (int j = 0; j < B.numEdges; ++j) {
+    for (int j = 0; j < B.numAxisEdges; ++j) {
       const Vec3 dbB = B.verts[B.edges[j].second] - B.verts[B.edges[j].first];
       const Vec3 db = R * dbB;
       Vec3 L = da.cross(db);

@@ -299,6 +299,23 @@ std::shared_ptr<ConvexHull> buildConvexHull(const std::vector<Vec3>& points, std
       if (a > b) std::swap(a, b);
       if (seen.emplace(edgeKey(int(a), int(b)), true).second) hull->edges.emplace_back(a, b);
     }
+  // Edges with a direction not seen before go first: the separating-axis test needs only those.
+  std::vector<std::pair<uint32_t, uint32_t>> axes, rest;
+  for (const auto& e : hull->edges) {
+    const Vec3 d = hull->vertices[e.second] - hull->vertices[e.first];
+    bool parallel = false;
+    for (const auto& x : axes) {
+      const Vec3 dx = hull->vertices[x.second] - hull->vertices[x.first];
+      if (d.cross(dx).squaredNorm() <= 1e-10f * d.squaredNorm() * dx.squaredNorm()) {
+        parallel = true;
+        break;
+      }
+    }
+    (parallel ? rest : axes).push_back(e);
+  }
+  hull->axisEdges = uint32_t(axes.size());
+  hull->edges = axes;
+  hull->edges.insert(hull->edges.end(), rest.begin(), rest.end());
   hull->centroid = shift.cast<float>();
   hull->volume = float(vol);
   hull->inertiaPerDensity = inertia.cast<float>();

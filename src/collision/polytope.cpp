@@ -7,8 +7,9 @@ namespace detail {
 namespace {
 // Box topology: faces CCW seen from outside, in the order -x, +x, -y, +y, -z, +z.
 constexpr uint32_t kBoxFaceVerts[24] = {0, 4, 6, 2, 1, 3, 7, 5, 0, 1, 5, 4, 2, 6, 7, 3, 0, 2, 3, 1, 4, 5, 7, 6};
-constexpr std::pair<uint32_t, uint32_t> kBoxEdges[12] = {{0, 1}, {2, 3}, {4, 5}, {6, 7}, {0, 2}, {1, 3},
-                                                         {4, 6}, {5, 7}, {0, 4}, {1, 5}, {2, 6}, {3, 7}};
+// One edge along x, y and z first (the axis edges), then the other nine.
+constexpr std::pair<uint32_t, uint32_t> kBoxEdges[12] = {{0, 1}, {0, 2}, {0, 4}, {2, 3}, {4, 5}, {6, 7},
+                                                         {1, 3}, {4, 6}, {5, 7}, {1, 5}, {2, 6}, {3, 7}};
 constexpr uint32_t kTriFaceVerts[6] = {0, 1, 2, 0, 2, 1};
 constexpr std::pair<uint32_t, uint32_t> kTriEdges[3] = {{0, 1}, {1, 2}, {2, 0}};
 }  // namespace
@@ -35,6 +36,7 @@ PolyView BoxPoly::view() const {
   p.faceVerts = kBoxFaceVerts;
   p.edges = kBoxEdges;
   p.numEdges = 12;
+  p.numAxisEdges = 3;
   return p;
 }
 
@@ -58,6 +60,7 @@ PolyView TrianglePoly::view() const {
   p.faceVerts = kTriFaceVerts;
   p.edges = kTriEdges;
   p.numEdges = 3;
+  p.numAxisEdges = 3;
   p.flat = true;
   return p;
 }
@@ -71,6 +74,7 @@ PolyView hullView(const ConvexHull& h) {
   p.faceVerts = h.faceVertices.data();
   p.edges = h.edges.data();
   p.numEdges = int(h.edges.size());
+  p.numAxisEdges = int(h.axisEdges);
   return p;
 }
 

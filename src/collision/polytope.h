@@ -21,6 +21,9 @@ struct PolyView {
   const uint32_t* faceVerts = nullptr;
   const std::pair<uint32_t, uint32_t>* edges = nullptr;
   int numEdges = 0;
+  /// The first numAxisEdges edges have distinct directions and cover every edge's direction. The
+  /// separating-axis test only needs them: parallel edges give the same axis (a box: 3 of 12).
+  int numAxisEdges = 0;
   /// A triangle: its two faces are the same plane, so the faces alone do not bound a solid.
   bool flat = false;
 

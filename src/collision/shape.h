@@ -29,6 +29,8 @@ struct ConvexHull {
   std::vector<Face> faces;
   std::vector<uint32_t> faceVertices;
   std::vector<std::pair<uint32_t, uint32_t>> edges;  ///< unique edges (vertex index pairs)
+  /// The first axisEdges edges have distinct directions and cover every edge's direction.
+  uint32_t axisEdges = 0;
   Vec3 centroid = Vec3::Zero();   ///< of the solid, in the input frame (vertices are already shifted by -centroid)
   float volume = 0.0f;
   Mat3 inertiaPerDensity = Mat3::Zero();  ///< about the centroid, for density 1
