@@ -412,6 +412,17 @@ SweepResult World::forEachStrip(uint32_t k, F&& f) {
   return total;
 }
 
+template <class F>
+void World::forEachContactChunk(uint32_t k, uint32_t grain, F&& f) {
+  const uint32_t n = islands_.islands[k].contactCount;
+  if (layoutOf_[k] >= 0) parallelFor(n, grain, f);
+  else f(0u, n);
+}
+
+Vec3 World::upDirection() const {
+  return settings_.gravity.squaredNorm() > 0.0f ? Vec3(-settings_.gravity.normalized()) : Vec3::UnitY();
+}
+
 // One sweep over island k: its contacts, then its joints. Joints after contacts: the joint tree,
 // solved exactly, ends each sweep intact. The other way round crates landing on a rope bridge left
 // their joints open, and Baumgarte turned that into a bounce.
@@ -435,7 +446,7 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias) {
 void World::splitGiantIslands() {
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
   layoutOf_.assign(m, -1);
-  const Vec3 up = settings_.gravity.squaredNorm() > 0.0f ? Vec3(-settings_.gravity.normalized()) : Vec3::UnitY();
+  const Vec3 up = upDirection();
   uint32_t used = 0, largest = 0;
   for (uint32_t k = 0; k < m; ++k) {
     const Island& isl = islands_.islands[k];
@@ -461,11 +472,9 @@ void World::solveIslands(int iterations) {
     const Island& isl = islands_.islands[k];
     ContactConstraint* cs = constraints_.data() + isl.firstContact;
     const uint32_t* ids = islands_.contacts.data() + isl.firstContact;
-    auto prepare = [&](uint32_t begin, uint32_t end) {
+    forEachContactChunk(k, 256, [&](uint32_t begin, uint32_t end) {
       for (uint32_t j = begin; j < end; ++j) prepareContact(bodies_, contacts_[ids[j]], ids[j], sp, cs[j]);
-    };
-    if (layoutOf_[k] >= 0) parallelFor(isl.contactCount, 256, prepare);
-    else prepare(0, isl.contactCount);
+    });
     if (sp.warmStart) forEachStrip(k, [&](uint32_t b, uint32_t e) {
       warmStart(bodies_, cs + b, e - b);
       return SweepResult{};
@@ -551,10 +560,7 @@ void World::relaxIslands(int relaxIterations) {
   auto store = [&](uint32_t k) {
     const Island& isl = islands_.islands[k];
     const ContactConstraint* cs = constraints_.data() + isl.firstContact;
-    if (layoutOf_[k] >= 0)
-      parallelFor(isl.contactCount, 1024, [&](uint32_t b, uint32_t e) { storeImpulses(cs + b, e - b, contacts_.data()); });
-    else
-      storeImpulses(cs, isl.contactCount, contacts_.data());
+    forEachContactChunk(k, 1024, [&](uint32_t b, uint32_t e) { storeImpulses(cs + b, e - b, contacts_.data()); });
     if (isl.jointCount > 0) finishJoints(k);
     if (isl.contactCount + isl.jointCount > 0) islandIterations_[k] += relaxIterations;
   };
@@ -662,7 +668,7 @@ void World::summariseIterations() {
 // of a stack down to the ground within one sweep (bottom-up needs one sweep per layer). Against
 // gravity, a 100-layer pyramid at 10 iterations dropped 1.6 m on average bottom-up, 0.08 m top-down.
 void World::orderContactsTopDown() {
-  const Vec3 up = settings_.gravity.squaredNorm() > 0.0f ? Vec3(-settings_.gravity.normalized()) : Vec3::UnitY();
+  const Vec3 up = upDirection();
   contactHeight_.resize(contacts_.size());
   const uint32_t* ids = islands_.contacts.data();
   parallelFor(uint32_t(islands_.contacts.size()), 4096, [&](uint32_t begin, uint32_t end) {

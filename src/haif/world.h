@@ -125,15 +125,19 @@ class World {
   void solveIslands(int iterations);
   void splitGiantIslands();
   template <class F> SweepResult forEachStrip(uint32_t island, F&& f);
+  /// f(begin, end) over island k's contacts: in chunks of `grain` in parallel for a split (giant)
+  /// island, as one range on the calling thread otherwise.
+  template <class F> void forEachContactChunk(uint32_t island, uint32_t grain, F&& f);
+  /// Against gravity (+y without gravity): what top-down order and strips are measured along.
+  Vec3 upDirection() const;
   SweepResult sweepIsland(uint32_t island, bool useBias);
   void shareSpareIterations(int iterations);
   void relaxIslands(int relaxIterations);
   void summariseIterations();
   SolverParams solverParams() const;
   /// Runs over the islands in parallel, batched (batchStart_), in two phases per batch: first(k) for
-  /// all its islands then second(k),
-  /// timing both on the thread that runs the batch: one phase is once-per-step work, the other
-  /// sweeps (see PhaseClock).
+  /// all its islands then second(k), timing both on the thread that runs the batch: one phase is
+  /// once-per-step work, the other sweeps (see PhaseClock).
   template <class First, class Second>
   void forEachIslandTimed(First&& first, Second&& second, bool firstIsSweeps = false);
   double measureSolveError(int iterations);
