@@ -206,6 +206,15 @@ inline void apply(BodyStore& bodies, const ContactConstraint& c, const Vec3& P, 
   }
 }
 
+// Scales the tangent impulse (n1, n2) back onto the circle of radius `limit` when it lies outside.
+inline void clampToFrictionCircle(float& n1, float& n2, float limit) {
+  const float len2 = n1 * n1 + n2 * n2;
+  if (!(len2 > limit * limit)) return;
+  const float scale = len2 > 0.0f ? limit / std::sqrt(len2) : 0.0f;
+  n1 *= scale;
+  n2 *= scale;
+}
+
 }  // namespace
 
 void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n) {
@@ -313,12 +322,7 @@ SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, f
       const float old1 = c.tangentImpulse1, old2 = c.tangentImpulse2;
       float n1 = old1 - omega * (c.tangentMass[0][0] * vt1 + c.tangentMass[0][1] * vt2);
       float n2 = old2 - omega * (c.tangentMass[1][0] * vt1 + c.tangentMass[1][1] * vt2);
-      const float len2 = n1 * n1 + n2 * n2;
-      if (len2 > limit * limit) {
-        const float scale = len2 > 0.0f ? limit / std::sqrt(len2) : 0.0f;
-        n1 *= scale;
-        n2 *= scale;
-      }
+      clampToFrictionCircle(n1, n2, limit);
       c.tangentImpulse1 = n1;
       c.tangentImpulse2 = n2;
       const float a1 = n1 - old1, a2 = n2 - old2;
@@ -391,12 +395,7 @@ void accelerate(BodyStore& bodies, ContactConstraint* cs, size_t n, float beta) 
     // Friction stays inside the cone of the new normal impulses.
     const float limit = c.friction * normalTotal;
     float n1 = c.tangentImpulse1 + beta * d[t1], n2 = c.tangentImpulse2 + beta * d[t2];
-    const float len2 = n1 * n1 + n2 * n2;
-    if (len2 > limit * limit) {
-      const float scale = len2 > 0.0f ? limit / std::sqrt(len2) : 0.0f;
-      n1 *= scale;
-      n2 *= scale;
-    }
+    clampToFrictionCircle(n1, n2, limit);
     const float a1 = n1 - c.tangentImpulse1, a2 = n2 - c.tangentImpulse2;
     c.tangentImpulse1 = n1;
     c.tangentImpulse2 = n2;
