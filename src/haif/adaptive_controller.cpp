@@ -17,9 +17,12 @@ int AdaptiveController::threadsFor(const ControlContext& ctx) const {
   return useClock_ ? ctx.threads : model_.modelThreads;
 }
 
+double AdaptiveController::criticalRows(const ControlContext& ctx) const {
+  return CostModel::criticalRows(ctx.totalRows, ctx.largestRows, threadsFor(ctx), model_.parallelEfficiency);
+}
+
 double AdaptiveController::iterationMs(const ControlContext& ctx) const {
-  const double crit = CostModel::criticalRows(ctx.totalRows, ctx.largestRows, threadsFor(ctx), model_.parallelEfficiency);
-  return model_.msPerRowIteration * crit;
+  return model_.msPerRowIteration * criticalRows(ctx);
 }
 
 int AdaptiveController::choose(const ControlContext& ctx) {
@@ -27,7 +30,7 @@ int AdaptiveController::choose(const ControlContext& ctx) {
     previous_ = iMax;
     return iMax;  // no budget, or nothing to solve: precision costs nothing
   }
-  const double crit = CostModel::criticalRows(ctx.totalRows, ctx.largestRows, threadsFor(ctx), model_.parallelEfficiency);
+  const double crit = criticalRows(ctx);
   const double elapsed = useClock_ ? ctx.elapsedMs : model_.collisionMs(ctx.bodies, ctx.contactPoints);
   const double post = useClock_ && postMs_ >= 0.0 ? postMs_ : model_.msPerBody * 0.5 * ctx.bodies;
   const double remaining = ctx.budgetMs - elapsed - post - model_.msPerRowPrepare * crit;
@@ -49,12 +52,11 @@ void AdaptiveController::observe(const ControlContext& ctx, const SolveObservati
   ++observed_;
   const double lr = std::max(s_.learnRate, 1.0 / double(observed_));
   postMs_ = postMs_ < 0.0 ? obs.integrateMs : (1.0 - lr) * postMs_ + lr * obs.integrateMs;
-  const int threads = threadsFor(ctx);
-  const double crit = CostModel::criticalRows(ctx.totalRows, ctx.largestRows, threads, model_.parallelEfficiency);
+  const double crit = criticalRows(ctx);
   if (crit <= 0.0 || obs.solveMs <= 0.0) return;
   // Sweeps along the critical path: the row-weighted mean when the path is the threads' share of
   // all rows (islands stop early on their own), the largest island's count when that island is it.
-  const double share = CostModel::criticalRows(ctx.totalRows, 0, threads, model_.parallelEfficiency);
+  const double share = CostModel::criticalRows(ctx.totalRows, 0, threadsFor(ctx), model_.parallelEfficiency);
   double sweeps = double(obs.iterations);
   if (share >= double(ctx.largestRows) && obs.rowIterations > 0 && ctx.totalRows > 0)
     sweeps = double(obs.rowIterations) / double(ctx.totalRows);

@@ -36,6 +36,8 @@ class AdaptiveController final : public IterationController {
   bool usesClock() const override { return useClock_; }
 
   const CostModel& model() const { return model_; }
+  /// Rows on the critical path for this context (see CostModel::criticalRows).
+  double criticalRows(const ControlContext& ctx) const;
   /// Time (ms) the controller expects an iteration over the critical path to take.
   double iterationMs(const ControlContext& ctx) const;
   /// Threads the critical path is planned for: the run's (adaptive) or the model's (model mode).
