@@ -371,24 +371,34 @@ TEST(Renderer, EveryPixelIsRepaintedEachFrame) {
   }
 }
 
+// A renderer with a shadow map and one without (shadowMapSize 0), both w x h; error says why one
+// could not be made.
+struct ShadowPair {
+  std::string error;
+  std::unique_ptr<Renderer> lit, flat;
+  ShadowPair(int w, int h) {
+    RendererOptions o;
+    o.width = w, o.height = h;
+    lit = Renderer::create(o, &error);
+    o.shadowMapSize = 0;
+    if (lit) flat = Renderer::create(o, &error);
+  }
+};
+
 TEST(Renderer, ShadowsOnlyDarkenTheGroundWhereTheyFall) {
   // The same scene with and without a shadow map: the ground away from the shadow is drawn by a
   // variant without the shadow lookup, so it must match exactly; the shadow itself is darker.
-  RendererOptions withMap, without;
-  withMap.width = without.width = 320, withMap.height = without.height = 240;
-  without.shadowMapSize = 0;
+  const ShadowPair pair(320, 240);
+  ASSERT_TRUE(pair.lit && pair.flat) << pair.error;
   std::string error;
-  auto a = Renderer::create(withMap, &error);
-  auto b = Renderer::create(without, &error);
-  ASSERT_TRUE(a && b) << error;
   FrameInput f;
   f.camera = frontCamera();
   f.camera.eye[1] = 5.f;
   f.instances.push_back(groundBox());
   f.instances.push_back(coloredBody(ShapeKind::Box, -1.f, 2.f, 0.f, 0.2f, 0.3f, 0.9f));
   std::vector<uint8_t> pa, pb;
-  ASSERT_TRUE(a->render(f, pa, &error)) << error;
-  ASSERT_TRUE(b->render(f, pb, &error)) << error;
+  ASSERT_TRUE(pair.lit->render(f, pa, &error)) << error;
+  ASSERT_TRUE(pair.flat->render(f, pb, &error)) << error;
   int darker = 0, brighter = 0, same = 0;
   for (size_t i = 0; i < pa.size(); i += 4) {
     const int d = (pa[i] + pa[i + 1] + pa[i + 2]) - (pb[i] + pb[i + 1] + pb[i + 2]);
@@ -409,15 +419,11 @@ TEST(Renderer, TiltedBoxCastsTheSameShadowAsTheSameHull) {
   for (int c = 0; c < 8; ++c) corners.insert(corners.end(), {c & 1 ? hx : -hx, c & 2 ? hy : -hy, c & 4 ? hz : -hz});
   const std::vector<uint32_t> faces = {0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5, 0, 1, 5, 0, 5, 4,
                                        2, 6, 7, 2, 7, 3, 0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6};
-  RendererOptions o, flat;
-  o.width = flat.width = 240, o.height = flat.height = 180;
-  flat.shadowMapSize = 0;
+  const ShadowPair pair(240, 180);
+  ASSERT_TRUE(pair.lit && pair.flat) << pair.error;
   std::string error;
-  auto r = Renderer::create(o, &error);
-  auto noShadow = Renderer::create(flat, &error);
-  ASSERT_TRUE(r && noShadow) << error;
-  ASSERT_TRUE(r->registerMesh(7, corners, faces, &error)) << error;
-  ASSERT_TRUE(noShadow->registerMesh(7, corners, faces, &error)) << error;
+  ASSERT_TRUE(pair.lit->registerMesh(7, corners, faces, &error)) << error;
+  ASSERT_TRUE(pair.flat->registerMesh(7, corners, faces, &error)) << error;
   std::vector<uint8_t> images[3];
   for (int k = 0; k < 3; ++k) {
     FrameInput f;
@@ -431,7 +437,7 @@ TEST(Renderer, TiltedBoxCastsTheSameShadowAsTheSameHull) {
     caster.meshId = 7;
     for (int i = 0; i < 4; ++i) caster.orientation[i] = q[i];
     f.instances.push_back(caster);
-    ASSERT_TRUE((k == 2 ? noShadow : r)->render(f, images[k], &error)) << error;
+    ASSERT_TRUE((k == 2 ? pair.flat : pair.lit)->render(f, images[k], &error)) << error;
   }
   int shadowed = 0;
   for (size_t i = 0; i < images[0].size(); i += 4)
