@@ -9,6 +9,17 @@
 namespace haif::render {
 namespace {
 
+// Writes rgba (w x h) to path and reads it back into back, checking the size read.
+void writeAndReadBack(const std::string& path, int w, int h, const std::vector<uint8_t>& rgba,
+                      std::vector<uint8_t>& back) {
+  std::string error;
+  ASSERT_TRUE(writePng(path, w, h, rgba.data(), &error)) << error;
+  int rw = 0, rh = 0;
+  ASSERT_TRUE(readPng(path, &rw, &rh, &back, &error)) << error;
+  ASSERT_EQ(rw, w);
+  ASSERT_EQ(rh, h);
+}
+
 TEST(PngIo, RoundTripKeepsEveryPixelAndTopRowFirst) {
   const int w = 37, h = 21;  // odd sizes catch stride mistakes
   std::vector<uint8_t> rgba(static_cast<size_t>(w) * h * 4);
@@ -19,13 +30,8 @@ TEST(PngIo, RoundTripKeepsEveryPixelAndTopRowFirst) {
       p[3] = static_cast<uint8_t>(255 - y);
     }
   const std::string path = test::tempDir() + "/roundtrip.png";
-  std::string error;
-  ASSERT_TRUE(writePng(path, w, h, rgba.data(), &error)) << error;
-  int rw = 0, rh = 0;
   std::vector<uint8_t> back;
-  ASSERT_TRUE(readPng(path, &rw, &rh, &back, &error)) << error;
-  EXPECT_EQ(rw, w);
-  EXPECT_EQ(rh, h);
+  ASSERT_NO_FATAL_FAILURE(writeAndReadBack(path, w, h, rgba, back));
   EXPECT_EQ(back, rgba);
   // Nothing but the final file is left behind.
   int files = 0;
@@ -45,13 +51,8 @@ TEST(PngIo, OpaqueFrameRoundTripsExactly) {
     rgba[i] = (i % 4 == 3) ? 255 : static_cast<uint8_t>((i % 7 == 0) ? seed >> 24 : (i / 4) % 251);
   }
   const std::string path = test::tempDir() + "/opaque.png";
-  std::string error;
-  ASSERT_TRUE(writePng(path, w, h, rgba.data(), &error)) << error;
-  int rw = 0, rh = 0;
   std::vector<uint8_t> back;
-  ASSERT_TRUE(readPng(path, &rw, &rh, &back, &error)) << error;
-  ASSERT_EQ(rw, w);
-  ASSERT_EQ(rh, h);
+  ASSERT_NO_FATAL_FAILURE(writeAndReadBack(path, w, h, rgba, back));
   EXPECT_TRUE(back == rgba);
   // Stored as RGB: well under the 3.7 MB of raw RGBA even with the noise in it.
   EXPECT_LT(std::filesystem::file_size(path), rgba.size() * 3 / 4 + 4096);
