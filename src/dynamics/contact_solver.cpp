@@ -5,20 +5,13 @@
 
 namespace haif {
 
-namespace {
-
-// Builds cc.blockInverse (see ContactConstraint) from the manifold's point positions and the
-// coupling matrix; false when the block must be solved by passes alone.
-bool prepareBlockInverse(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
-                         ContactConstraint& cc) {
-  const int m = cc.count;
-  if (m < 2) return false;
-  const Vec3 n0 = cc.points[0].normal;
-  for (int i = 1; i < m; ++i)
-    if ((cc.points[i].normal - n0).squaredNorm() > 1e-8f) return false;
+int manifoldBasis(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
+                  double B[kMaxManifoldPoints][3]) {
+  const int m = mf.count;
+  for (int i = 0; i < kMaxManifoldPoints; ++i) B[i][0] = B[i][1] = B[i][2] = 0.0;
+  if (m < 1) return 0;
   // In-plane coordinates of the points. G does not depend on which basis of the affine functions
   // B holds, so B = [1, s, t] serves; collinear points span only [1, the coordinate along them].
-  double B[kMaxManifoldPoints][3];
   double css = 0.0, ctt = 0.0, cst = 0.0;
   for (int i = 0; i < m; ++i) {
     const Vec3 d = mf.points[i].position - centre;
@@ -30,11 +23,30 @@ bool prepareBlockInverse(const Manifold& mf, const Vec3& centre, const Vec3& t1,
     cst += B[i][1] * B[i][2];
   }
   const double spread = css + ctt;
-  if (!(spread > 1e-12)) return false;  // all points in one place
-  const bool collinear = css * ctt - cst * cst <= 1e-4 * spread * spread;
-  const int k = m >= 3 && !collinear ? 3 : 2;
+  const bool single = m < 2 || !(spread > 1e-12);  // all points in one place
+  const bool collinear = !single && css * ctt - cst * cst <= 1e-4 * spread * spread;
+  const int k = single ? 1 : m >= 3 && !collinear ? 3 : 2;
   if (k == 2 && ctt > css)
     for (int i = 0; i < m; ++i) B[i][1] = B[i][2];
+  for (int i = 0; i < m; ++i)
+    for (int a = k; a < 3; ++a) B[i][a] = 0.0;
+  return k;
+}
+
+namespace {
+
+// Builds cc.blockInverse (see ContactConstraint) from the manifold's point positions and the
+// coupling matrix; false when the block must be solved by passes alone.
+bool prepareBlockInverse(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
+                         ContactConstraint& cc) {
+  const int m = cc.count;
+  if (m < 2) return false;
+  const Vec3 n0 = cc.points[0].normal;
+  for (int i = 1; i < m; ++i)
+    if ((cc.points[i].normal - n0).squaredNorm() > 1e-8f) return false;
+  double B[kMaxManifoldPoints][3];
+  const int k = manifoldBasis(mf, centre, t1, t2, B);
+  if (k < 2) return false;
   // A = Bᵀ K B (k × k, symmetric positive definite when the bodies can respond in all k ways).
   double KB[kMaxManifoldPoints][3] = {};
   for (int i = 0; i < m; ++i)
@@ -246,7 +258,7 @@ inline void solveNormalBlock(ContactConstraint& c, const Vec3& va, const Vec3& w
   for (int i = 0; i < M; ++i) {
     const ContactConstraint::Point& p = c.points[i];
     vn[i] = p.normal.dot(dv) + p.rBxn.dot(wb) - p.rAxn.dot(wa);
-    bias[i] = useBias ? p.bias : (p.restitutionBias < 0.0f && p.normalImpulse > 0.0f ? p.restitutionBias : p.relaxBias);
+    bias[i] = rowBias(p, useBias);
     lambda[i] = start[i] = p.normalImpulse;
   }
   if (M > 1 && c.blockExact) {
@@ -286,77 +298,90 @@ inline void solveNormalBlock(ContactConstraint& c, const Vec3& va, const Vec3& w
   }
 }
 
+void solveFrictionRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb, float omega) {
+  const int m = c.count;
+  // Bounded by the normal impulses of the previous sweep.
+  float normalTotal = 0.0f;
+  for (int i = 0; i < m; ++i) normalTotal += c.points[i].normalImpulse;
+  const float limit = c.friction * normalTotal;
+  {
+    // Twist about the normal.
+    const float vt = c.twistAxis.dot(wb - wa);
+    const float maxTwist = limit * c.twistRadius;
+    const float old = c.twistImpulse;
+    c.twistImpulse = std::clamp(old - omega * c.twistMass * vt, -maxTwist, maxTwist);
+    const float applied = c.twistImpulse - old;
+    c.delta[kMaxManifoldPoints + 2] = applied;
+    wa -= applied * c.iAtw;
+    wb += applied * c.iBtw;
+  }
+  // Both tangent rows together, clamped to the friction circle |λt| <= μ λn: clamping each axis
+  // alone (a box) lets friction reach √2 μ λn and pushes a sliding body sideways.
+  const Vec3 dv = vb - va;
+  const float vt1 = c.tangent1.dot(dv) + c.rBxt1.dot(wb) - c.rAxt1.dot(wa);
+  const float vt2 = c.tangent2.dot(dv) + c.rBxt2.dot(wb) - c.rAxt2.dot(wa);
+  const float old1 = c.tangentImpulse1, old2 = c.tangentImpulse2;
+  float n1 = old1 - omega * (c.tangentMass[0][0] * vt1 + c.tangentMass[0][1] * vt2);
+  float n2 = old2 - omega * (c.tangentMass[1][0] * vt1 + c.tangentMass[1][1] * vt2);
+  clampToFrictionCircle(n1, n2, limit);
+  c.tangentImpulse1 = n1;
+  c.tangentImpulse2 = n2;
+  const float a1 = n1 - old1, a2 = n2 - old2;
+  c.delta[kMaxManifoldPoints] = a1;
+  c.delta[kMaxManifoldPoints + 1] = a2;
+  const Vec3 P = a1 * c.tangent1 + a2 * c.tangent2;
+  va -= c.invMassA * P;
+  wa -= a1 * c.iAt1 + a2 * c.iAt2;
+  vb += c.invMassB * P;
+  wb += a1 * c.iBt1 + a2 * c.iBt2;
+}
+
+float applyNormalChange(ContactConstraint& c, const float* applied, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb) {
+  float residual = 0.0f;
+  for (int i = 0; i < c.count; ++i) {
+    const ContactConstraint::Point& p = c.points[i];
+    c.delta[i] = applied[i];
+    va -= (c.invMassA * applied[i]) * p.normal;
+    wa -= applied[i] * p.iAn;
+    vb += (c.invMassB * applied[i]) * p.normal;
+    wb += applied[i] * p.iBn;
+    // |Δλ| / normalMass: the velocity correction of the row (K_ii = 1 / normalMass).
+    if (p.normalMass > 0.0f) residual = std::max(residual, std::fabs(applied[i]) * c.normalCoupling[i][i]);
+  }
+  return residual;
+}
+
+float solveNormalRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb, float omega, bool useBias) {
+  float applied[kMaxManifoldPoints];
+  switch (c.count) {
+    case 4: solveNormalBlock<4>(c, va, wa, vb, wb, omega, useBias, applied); break;
+    case 3: solveNormalBlock<3>(c, va, wa, vb, wb, omega, useBias, applied); break;
+    case 2: solveNormalBlock<2>(c, va, wa, vb, wb, omega, useBias, applied); break;
+    default: solveNormalBlock<1>(c, va, wa, vb, wb, omega, useBias, applied); break;
+  }
+  return applyNormalChange(c, applied, va, wa, vb, wb);
+}
+
+double squaredChange(const ContactConstraint& c) {
+  float sq = 0.0f;
+  for (int r = 0; r < ContactConstraint::kRows; ++r) sq += c.delta[r] * c.delta[r];
+  return sq;
+}
+
 SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias) {
   float residual = 0.0f;
   double change = 0.0;
   for (size_t k = 0; k < n; ++k) {
     ContactConstraint& c = cs[k];
-    const int m = c.count;
-    if (m == 0) continue;
+    if (c.count == 0) continue;
     // Static and kinematic bodies are read (their velocity is given) but never written, so
     // islands that share a static body can be solved concurrently.
     Vec3 va = bodies.v[c.a], wa = bodies.w[c.a], vb = bodies.v[c.b], wb = bodies.w[c.b];
-    const float mA = c.invMassA, mB = c.invMassB;
-
-    // Friction first, bounded by the normal impulses of the previous sweep.
-    float normalTotal = 0.0f;
-    for (int i = 0; i < m; ++i) normalTotal += c.points[i].normalImpulse;
-    const float limit = c.friction * normalTotal;
-    {
-      // Twist about the normal.
-      const float vt = c.twistAxis.dot(wb - wa);
-      const float maxTwist = limit * c.twistRadius;
-      const float old = c.twistImpulse;
-      c.twistImpulse = std::clamp(old - omega * c.twistMass * vt, -maxTwist, maxTwist);
-      const float applied = c.twistImpulse - old;
-      c.delta[kMaxManifoldPoints + 2] = applied;
-      wa -= applied * c.iAtw;
-      wb += applied * c.iBtw;
-    }
-    {
-      // Both tangent rows together, clamped to the friction circle |λt| <= μ λn: clamping each axis
-      // alone (a box) lets friction reach √2 μ λn and pushes a sliding body sideways.
-      const Vec3 dv = vb - va;
-      const float vt1 = c.tangent1.dot(dv) + c.rBxt1.dot(wb) - c.rAxt1.dot(wa);
-      const float vt2 = c.tangent2.dot(dv) + c.rBxt2.dot(wb) - c.rAxt2.dot(wa);
-      const float old1 = c.tangentImpulse1, old2 = c.tangentImpulse2;
-      float n1 = old1 - omega * (c.tangentMass[0][0] * vt1 + c.tangentMass[0][1] * vt2);
-      float n2 = old2 - omega * (c.tangentMass[1][0] * vt1 + c.tangentMass[1][1] * vt2);
-      clampToFrictionCircle(n1, n2, limit);
-      c.tangentImpulse1 = n1;
-      c.tangentImpulse2 = n2;
-      const float a1 = n1 - old1, a2 = n2 - old2;
-      c.delta[kMaxManifoldPoints] = a1;
-      c.delta[kMaxManifoldPoints + 1] = a2;
-      const Vec3 P = a1 * c.tangent1 + a2 * c.tangent2;
-      va -= mA * P;
-      wa -= a1 * c.iAt1 + a2 * c.iAt2;
-      vb += mB * P;
-      wb += a1 * c.iBt1 + a2 * c.iBt2;
-    }
-
-    // Normal rows last: non-penetration matters more than friction, so each sweep ends with the
-    // normal rows satisfied (see solveNormalBlock).
-    float applied[kMaxManifoldPoints];
-    switch (m) {
-      case 4: solveNormalBlock<4>(c, va, wa, vb, wb, omega, useBias, applied); break;
-      case 3: solveNormalBlock<3>(c, va, wa, vb, wb, omega, useBias, applied); break;
-      case 2: solveNormalBlock<2>(c, va, wa, vb, wb, omega, useBias, applied); break;
-      default: solveNormalBlock<1>(c, va, wa, vb, wb, omega, useBias, applied); break;
-    }
-    for (int i = 0; i < m; ++i) {
-      const ContactConstraint::Point& p = c.points[i];
-      c.delta[i] = applied[i];
-      va -= (mA * applied[i]) * p.normal;
-      wa -= applied[i] * p.iAn;
-      vb += (mB * applied[i]) * p.normal;
-      wb += applied[i] * p.iBn;
-      // |Δλ| / normalMass: the velocity correction of the row (K_ii = 1 / normalMass).
-      if (p.normalMass > 0.0f) residual = std::max(residual, std::fabs(applied[i]) * c.normalCoupling[i][i]);
-    }
-    float sq = 0.0f;
-    for (int r = 0; r < ContactConstraint::kRows; ++r) sq += c.delta[r] * c.delta[r];
-    change += sq;
+    // Friction first; normal rows last: non-penetration matters more than friction, so each sweep
+    // ends with the normal rows satisfied (see solveNormalBlock).
+    solveFrictionRows(c, va, wa, vb, wb, omega);
+    residual = std::max(residual, solveNormalRows(c, va, wa, vb, wb, omega, useBias));
+    change += squaredChange(c);
     if (c.dynA) {
       bodies.v[c.a] = va;
       bodies.w[c.a] = wa;

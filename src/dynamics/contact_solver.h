@@ -93,6 +93,29 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
 /// Applies the accumulated (warm-start) impulses of the constraints to the body velocities.
 void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n);
 
+/// In-plane basis of a manifold's points for its normal block: B[i] = [1, s_i, t_i], with (s, t) the
+/// point's coordinates along t1 and t2 from `centre`. Returns the rank k it spans (3 for a patch, 2
+/// for collinear points, 1 for a single place); columns from k on are zero.
+int manifoldBasis(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
+                  double B[kMaxManifoldPoints][3]);
+
+/// b of a normal row: with position correction in a main sweep (`useBias`), the relax bias or a
+/// bounce in a relax sweep.
+inline float rowBias(const ContactConstraint::Point& p, bool useBias) {
+  return useBias ? p.bias : (p.restitutionBias < 0.0f && p.normalImpulse > 0.0f ? p.restitutionBias : p.relaxBias);
+}
+
+// The parts of a sweep over one manifold, on its bodies' velocities (va, wa, vb, wb) held by the caller:
+/// Twist and tangent rows, bounded by the normal impulses of the previous sweep.
+void solveFrictionRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb, float omega);
+/// The normal block (exact, or projected passes); returns the largest velocity correction of a row.
+float solveNormalRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb, float omega, bool useBias);
+/// Applies normal impulse changes `applied` (already added to the points' impulses) to the
+/// velocities and records them in c.delta; returns the largest velocity correction of a row.
+float applyNormalChange(ContactConstraint& c, const float* applied, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb);
+/// Σ of the squared impulse changes of c's rows in its last sweep.
+double squaredChange(const ContactConstraint& c);
+
 /// What one sweep did.
 struct SweepResult {
   float residual = 0.0f;  ///< largest velocity correction of a normal row (m/s): what early stopping tests

@@ -430,9 +430,11 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias) {
   const Island& isl = islands_.islands[k];
   ContactConstraint* cs = constraints_.data() + isl.firstContact;
   const float omega = settings_.omega;
-  SweepResult r = forEachStrip(k, [&](uint32_t b, uint32_t e) {
-    return solveIteration(bodies_, cs + b, e - b, omega, useBias);
-  });
+  SweepResult r = isChain_[k] ? solveChainIteration(bodies_, cs, chainLinks_.data() + isl.firstContact,
+                                                     isl.contactCount, omega, useBias)
+                              : forEachStrip(k, [&](uint32_t b, uint32_t e) {
+                                  return solveIteration(bodies_, cs + b, e - b, omega, useBias);
+                                });
   if (isl.jointCount > 0) {
     JointTree* tree = settings_.joints.treeSolve ? &jointTrees_[k] : nullptr;
     r.residual = std::max(r.residual, solveJointIteration(bodies_, jointConstraints_.data() + isl.firstJoint,
@@ -475,6 +477,9 @@ void World::solveIslands(int iterations) {
     forEachContactChunk(k, 256, [&](uint32_t begin, uint32_t end) {
       for (uint32_t j = begin; j < end; ++j) prepareContact(bodies_, contacts_[ids[j]], ids[j], sp, cs[j]);
     });
+    isChain_[k] = settings_.chainSolve && layoutOf_[k] < 0 && isl.jointCount == 0 &&
+                  prepareChain(contacts_.data(), cs, isl.contactCount, chainMark_.data(),
+                               chainLinks_.data() + isl.firstContact);
     if (sp.warmStart) forEachStrip(k, [&](uint32_t b, uint32_t e) {
       warmStart(bodies_, cs + b, e - b);
       return SweepResult{};
@@ -485,7 +490,8 @@ void World::solveIslands(int iterations) {
     const Island& isl = islands_.islands[k];
     ContactConstraint* cs = constraints_.data() + isl.firstContact;
     // Momentum on the contacts of joint-free islands; a joint tree is solved exactly every sweep.
-    const bool cg = settings_.accelerate && isl.jointCount == 0;
+    // A chain is solved exactly each sweep: nothing for momentum to carry.
+    const bool cg = settings_.accelerate && isl.jointCount == 0 && !isChain_[k];
     const uint32_t n = isl.contactCount;
     double lastChange = 0.0;
     int it = 0;
@@ -616,6 +622,9 @@ void World::solve(int iterations) {
   // Iterations with position correction now; the relax iterations run after integration.
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
   constraints_.resize(islands_.contacts.size());
+  chainLinks_.resize(constraints_.size());
+  chainMark_.resize(bodyCount());
+  isChain_.assign(m, 0);
   jointConstraints_.resize(islands_.joints.size());
   if (jointTrees_.size() < m) jointTrees_.resize(m);  // grows to the most islands seen, then reused
   if (!joints_.empty()) stiffenJointedBodies();

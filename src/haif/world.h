@@ -9,6 +9,7 @@
 #include "core/body_store.h"
 #include "dynamics/buoyancy.h"
 #include "dynamics/contact.h"
+#include "dynamics/contact_chain.h"
 #include "dynamics/contact_solver.h"
 #include "dynamics/joint_solver.h"
 #include "dynamics/joint_tree.h"
@@ -38,6 +39,7 @@ struct WorldSettings {
   bool topDownOrder = true;         ///< solve the highest contacts of an island first
   bool accelerate = true;           ///< conjugate-gradient momentum between sweeps (contact_solver.h)
   bool coldStartFromWeight = true;  ///< new contacts of a resting pile start from the weight they carry
+  bool chainSolve = true;           ///< solve the normal rows of chain-shaped islands (stacks) exactly
   JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)
   bool sleeping = false;
   float timeToSleep = 0.5f;         ///< s an island must rest before it sleeps
@@ -173,6 +175,9 @@ class World {
   std::vector<float> carried_;        // per body: weight impulse (N s) it carries this step, for cold contacts
   std::vector<uint16_t> supports_;    // per body: contacts holding it up
   std::vector<ContactConstraint> constraints_;
+  std::vector<ChainLink> chainLinks_;  // parallel to constraints_; used for islands that form a chain
+  std::vector<uint8_t> isChain_;       // per island: its contacts were prepared as a chain this step
+  std::vector<uint32_t> chainMark_;    // per body: scratch of prepareChain
   std::vector<int> islandIterations_;
   std::vector<float> islandResidual_;
   std::vector<int> islandExtra_;      // spare iterations given to unconverged islands this step

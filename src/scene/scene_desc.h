@@ -93,6 +93,7 @@ struct SimSettings {
   float slop = 0.005f;      ///< allowed penetration (m) before position correction
   bool sleeping = false;    ///< bodies (islands) at rest go to sleep
   bool accelerate = true;   ///< conjugate-gradient momentum between solver sweeps
+  bool chainSolve = true;   ///< exact solve of chain-shaped islands (stacks): dynamics/contact_chain.h
   int frames = 300;         ///< default number of steps for `haif run`
 };
 

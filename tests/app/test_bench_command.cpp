@@ -151,11 +151,13 @@ TEST_F(BenchCommand, TinySweepWritesResultsReportAndPlot) {
     EXPECT_EQ(col(byRun["haif fixed 10 1"], "state_hash"), col(byRun["haif fixed 10 2"], "state_hash"));
   }
   if (kBullet) {
-    // Ten iterations hold the stacks better than two, in Bullet as in HAIF.
+    // Ten iterations hold the stacks better than two in Bullet.
     EXPECT_LT(num(byRun["bullet fixed 10 1"], "max_penetration_m"),
               num(byRun["bullet fixed 2 1"], "max_penetration_m"));
-    EXPECT_LT(num(byRun["haif fixed 10 2"], "max_penetration_m"), num(byRun["haif fixed 2 2"], "max_penetration_m"));
   }
+  // HAIF solves each stack as a chain, exactly: two iterations hold it as well as ten.
+  EXPECT_LT(num(byRun["haif fixed 2 2"], "solve_error_mean"), 1e-3);
+  EXPECT_LE(num(byRun["haif fixed 2 2"], "max_penetration_m"), num(byRun["haif fixed 10 2"], "max_penetration_m") + 1e-4);
 
   const std::string md = readFile(out / "report.md");
   EXPECT_NE(md.find("The seed's table"), std::string::npos);

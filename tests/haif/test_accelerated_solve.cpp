@@ -21,6 +21,7 @@ ColumnResult standColumn(int boxes, bool accelerate, int steps, bool coldStartFr
   ws.iterations = 10;
   ws.accelerate = accelerate;
   ws.coldStartFromWeight = coldStartFromWeight;
+  ws.chainSolve = false;  // a column is a chain, solved exactly without sweeps: test the sweeps
   World w(ws);
   addGround(w);
   addColumn(w, boxes);

@@ -1,0 +1,352 @@
+#include "dynamics/contact_chain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace haif {
+
+namespace {
+
+constexpr uint32_t kUnmarked = 0xffffffffu;
+/// Solves per sweep: the first with the links that push or touch, then again after letting go of
+/// links that came out pulling, holding back links with a lifting corner, or taking in links the
+/// solve made touch.
+constexpr int kChainRounds = 8;
+/// A row closing slower than this (m/s) counts as touching: a resting contact that pushes nothing yet
+/// (a cold one under a landing) takes part from the first solve instead of joining a round later.
+constexpr float kTouchingGap = 1e-3f;
+
+// Inverse of a symmetric positive definite 3x3 block by cofactors; false when it is (nearly) singular.
+bool invertPivot(const double a[3][3], double out[3][3]) {
+  const double c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1];
+  const double c01 = a[1][2] * a[2][0] - a[1][0] * a[2][2];
+  const double c02 = a[1][0] * a[2][1] - a[1][1] * a[2][0];
+  const double det = a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02;
+  const double scale = a[0][0] * a[1][1] * a[2][2];
+  if (!(a[0][0] > 0.0 && a[1][1] > 0.0 && a[2][2] > 0.0 && det > 1e-9 * scale)) return false;
+  const double inv = 1.0 / det;
+  out[0][0] = c00 * inv;
+  out[1][0] = c01 * inv;
+  out[2][0] = c02 * inv;
+  out[0][1] = (a[0][2] * a[2][1] - a[0][1] * a[2][2]) * inv;
+  out[1][1] = (a[0][0] * a[2][2] - a[0][2] * a[2][0]) * inv;
+  out[2][1] = (a[0][1] * a[2][0] - a[0][0] * a[2][1]) * inv;
+  out[0][2] = (a[0][1] * a[1][2] - a[0][2] * a[1][1]) * inv;
+  out[1][2] = (a[0][2] * a[1][0] - a[0][0] * a[1][2]) * inv;
+  out[2][2] = (a[0][0] * a[1][1] - a[0][1] * a[1][0]) * inv;
+  return true;
+}
+
+// The virtual rows of one manifold and their diagonal block; false when its normal rows have
+// different normals (a mesh contact), which the reduction does not cover.
+bool prepareLink(const Contact& contact, const ContactConstraint& c, ChainLink& link) {
+  if (c.count == 0 || (c.count > 1 && !c.blockExact)) return false;
+  Vec3 centre = Vec3::Zero();
+  for (int i = 0; i < c.count; ++i) centre += contact.manifold.points[i].position;
+  centre /= float(c.count);
+  double B[kMaxManifoldPoints][3];
+  link.rank = manifoldBasis(contact.manifold, centre, c.tangent1, c.tangent2, B);
+  const double mSum = double(c.invMassA) + double(c.invMassB);
+  for (int r = 0; r < 3; ++r) {
+    double lin = 0.0;
+    Vec3 angA = Vec3::Zero(), angB = Vec3::Zero(), invA = Vec3::Zero(), invB = Vec3::Zero();
+    for (int i = 0; i < kMaxManifoldPoints; ++i) {
+      link.basis[i][r] = float(B[i][r]);
+      if (i >= c.count) continue;
+      const float w = float(B[i][r]);
+      const ContactConstraint::Point& p = c.points[i];
+      lin += B[i][r];
+      angA += w * p.rAxn;
+      angB += w * p.rBxn;
+      invA += w * p.iAn;
+      invB += w * p.iBn;
+    }
+    link.lin[r] = float(lin);
+    link.angA[r] = angA;
+    link.angB[r] = angB;
+    link.invAngA[r] = invA;
+    link.invAngB[r] = invB;
+  }
+  for (int r = 0; r < 3; ++r)
+    for (int q = 0; q < 3; ++q) {
+      link.next[r][q] = 0.0;
+      if (r >= link.rank || q >= link.rank) {
+        link.diag[r][q] = r == q ? 1.0 : 0.0;  // an unused row: μ_r = 0
+        continue;
+      }
+      link.diag[r][q] = double(link.lin[r]) * double(link.lin[q]) * mSum + double(link.angA[r].dot(link.invAngA[q])) +
+                        double(link.angB[r].dot(link.invAngB[q]));
+    }
+  link.coupledToNext = false;
+  link.active = link.factoredActive = false;
+  return true;
+}
+
+// R_p M⁻¹ R_cᵀ through the one body the links share: `sideP` / `sideC` say whether it is body B (1)
+// or body A (0) of each; a row acts on body A with the opposite sign.
+void coupleLinks(const ContactConstraint& cp, int sideP, const ContactConstraint& cc, int sideC, ChainLink& p,
+                 const ChainLink& c) {
+  const double sign = (sideP == 1 ? 1.0 : -1.0) * (sideC == 1 ? 1.0 : -1.0);
+  const double invMass = sideP == 1 ? cp.invMassB : cp.invMassA;
+  const double normals = double(cp.points[0].normal.dot(cc.points[0].normal));
+  for (int r = 0; r < p.rank; ++r) {
+    const Vec3& ang = sideP == 1 ? p.angB[r] : p.angA[r];
+    for (int q = 0; q < c.rank; ++q) {
+      const Vec3& invAng = sideC == 1 ? c.invAngB[q] : c.invAngA[q];
+      p.next[r][q] = sign * (double(p.lin[r]) * double(c.lin[q]) * invMass * normals + double(ang.dot(invAng)));
+    }
+  }
+  p.coupledToNext = true;
+}
+
+// Block elimination down the chain for the links marked active (inactive links cut it in pieces).
+// Reuses the factors while the active links are those they were made for.
+bool factorChain(ChainLink* links, uint32_t n) {
+  bool same = true;
+  for (uint32_t j = 0; j < n && same; ++j) same = links[j].active == links[j].factoredActive;
+  if (same) return true;
+  for (uint32_t j = 0; j < n; ++j) {
+    ChainLink& link = links[j];
+    link.factoredActive = link.active;
+    if (!link.active) continue;
+    double pivot[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int q = 0; q < 3; ++q) pivot[r][q] = link.diag[r][q];
+    if (j > 0 && links[j - 1].active && links[j - 1].coupledToNext) {
+      const ChainLink& prev = links[j - 1];
+      // lower = Cᵀ P_prev⁻¹, pivot −= lower C, with C = prev.next.
+      for (int q = 0; q < 3; ++q)
+        for (int r = 0; r < 3; ++r) {
+          double s = 0.0;
+          for (int t = 0; t < 3; ++t) s += prev.next[t][q] * prev.pivotInverse[t][r];
+          link.lower[q][r] = s;
+        }
+      for (int q = 0; q < 3; ++q)
+        for (int t = 0; t < 3; ++t) {
+          double s = 0.0;
+          for (int r = 0; r < 3; ++r) s += link.lower[q][r] * prev.next[r][t];
+          pivot[q][t] -= s;
+        }
+    }
+    if (!invertPivot(pivot, link.pivotInverse)) {
+      for (uint32_t i = 0; i < n; ++i) links[i].factoredActive = !links[i].active;  // nothing valid kept
+      return false;
+    }
+  }
+  return true;
+}
+
+// μ from the factors: forward through `lower`, back through `next` (μ holds y on the way down).
+void substituteChain(ChainLink* links, uint32_t n) {
+  for (uint32_t j = 0; j < n; ++j) {
+    ChainLink& link = links[j];
+    if (!link.active) continue;
+    for (int r = 0; r < 3; ++r) link.mu[r] = link.rhs[r];
+    if (j > 0 && links[j - 1].active && links[j - 1].coupledToNext)
+      for (int r = 0; r < 3; ++r)
+        for (int t = 0; t < 3; ++t) link.mu[r] -= link.lower[r][t] * links[j - 1].mu[t];
+  }
+  for (uint32_t j = n; j-- > 0;) {
+    ChainLink& link = links[j];
+    if (!link.active) continue;
+    double t[3] = {link.mu[0], link.mu[1], link.mu[2]};
+    if (j + 1 < n && link.coupledToNext && links[j + 1].active)
+      for (int r = 0; r < 3; ++r)
+        for (int q = 0; q < 3; ++q) t[r] -= link.next[r][q] * links[j + 1].mu[q];
+    for (int r = 0; r < 3; ++r)
+      link.mu[r] = link.pivotInverse[r][0] * t[0] + link.pivotInverse[r][1] * t[1] + link.pivotInverse[r][2] * t[2];
+  }
+}
+
+// Impulse change of point i of a link from its μ.
+inline float pointChange(const ChainLink& link, int i, float omega) {
+  return omega * float(link.basis[i][0] * link.mu[0] + link.basis[i][1] * link.mu[1] + link.basis[i][2] * link.mu[2]);
+}
+
+// J v + b of a normal row at the given body velocities: < 0 where the row is violated.
+inline float rowGap(const ContactConstraint::Point& p, const Vec3& va, const Vec3& wa, const Vec3& vb, const Vec3& wb,
+                    bool useBias) {
+  return p.normal.dot(vb - va) + p.rBxn.dot(wb) - p.rAxn.dot(wa) + rowBias(p, useBias);
+}
+
+// rhs = −Bᵀ (J v + b) of the active links at the bodies' current velocities.
+void computeRhs(const BodyStore& bodies, const ContactConstraint* cs, ChainLink* links, uint32_t n, bool useBias) {
+  for (uint32_t j = 0; j < n; ++j) {
+    ChainLink& link = links[j];
+    if (!link.active) continue;
+    const ContactConstraint& c = cs[j];
+    const Vec3 &va = bodies.v[c.a], &wa = bodies.w[c.a], &vb = bodies.v[c.b], &wb = bodies.w[c.b];
+    double rhs[3] = {0.0, 0.0, 0.0};
+    for (int i = 0; i < c.count; ++i) {
+      const float g = rowGap(c.points[i], va, wa, vb, wb, useBias);
+      for (int r = 0; r < 3; ++r) rhs[r] -= double(link.basis[i][r]) * g;
+    }
+    for (int r = 0; r < 3; ++r) link.rhs[r] = rhs[r];
+  }
+}
+
+}  // namespace
+
+bool prepareChain(const Contact* contacts, const ContactConstraint* cs, uint32_t n, uint32_t* mark,
+                  ChainLink* links) {
+  if (n < 2) return false;
+  for (uint32_t j = 0; j < n; ++j) {
+    if (cs[j].dynA) mark[cs[j].a] = kUnmarked;
+    if (cs[j].dynB) mark[cs[j].b] = kUnmarked;
+  }
+  for (uint32_t j = 0; j < n; ++j) {
+    const ContactConstraint& c = cs[j];
+    if (!prepareLink(contacts[c.contact], c, links[j])) return false;
+    // mark: 2j when a body was first met at link j, odd once it was met at a second, consecutive link.
+    for (int side = 0; side < 2; ++side) {
+      const bool dyn = side == 0 ? c.dynA : c.dynB;
+      if (!dyn) continue;
+      const uint32_t body = side == 0 ? c.a : c.b;
+      const uint32_t m = mark[body];
+      if (m == kUnmarked) {
+        mark[body] = 2 * j;
+        continue;
+      }
+      if (j == 0 || m != 2 * (j - 1) || links[j - 1].coupledToNext) return false;  // not a chain
+      const ContactConstraint& prev = cs[j - 1];
+      coupleLinks(prev, prev.b == body ? 1 : 0, c, side, links[j - 1], links[j]);
+      mark[body] = 2 * j + 1;
+    }
+  }
+  return true;
+}
+
+SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainLink* links, uint32_t n, float omega,
+                                bool useBias) {
+  auto load = [&](const ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb) {
+    va = bodies.v[c.a];
+    wa = bodies.w[c.a];
+    vb = bodies.v[c.b];
+    wb = bodies.w[c.b];
+  };
+  auto store = [&](const ContactConstraint& c, const Vec3& va, const Vec3& wa, const Vec3& vb, const Vec3& wb) {
+    if (c.dynA) {
+      bodies.v[c.a] = va;
+      bodies.w[c.a] = wa;
+    }
+    if (c.dynB) {
+      bodies.v[c.b] = vb;
+      bodies.w[c.b] = wb;
+    }
+  };
+  // Adds `applied` to a link's impulses and velocities; c.delta sums what the sweep changed.
+  auto commit = [&](ContactConstraint& c, const float* applied) {
+    float before[kMaxManifoldPoints];
+    for (int i = 0; i < c.count; ++i) {
+      before[i] = c.delta[i];
+      c.points[i].normalImpulse += applied[i];
+    }
+    Vec3 va, wa, vb, wb;
+    load(c, va, wa, vb, wb);
+    applyNormalChange(c, applied, va, wa, vb, wb);
+    store(c, va, wa, vb, wb);
+    for (int i = 0; i < c.count; ++i) c.delta[i] += before[i];
+  };
+  auto release = [&](ContactConstraint& c) {
+    float applied[kMaxManifoldPoints] = {};
+    bool any = false;
+    for (int i = 0; i < c.count; ++i) {
+      applied[i] = -c.points[i].normalImpulse;
+      any |= applied[i] != 0.0f;
+    }
+    if (any) commit(c, applied);
+  };
+  auto touches = [&](const ContactConstraint& c) {
+    const Vec3 &va = bodies.v[c.a], &wa = bodies.w[c.a], &vb = bodies.v[c.b], &wb = bodies.w[c.b];
+    for (int i = 0; i < c.count; ++i)
+      if (rowGap(c.points[i], va, wa, vb, wb, useBias) < kTouchingGap) return true;
+    return false;
+  };
+
+  for (uint32_t j = 0; j < n; ++j) {
+    ContactConstraint& c = cs[j];
+    Vec3 va, wa, vb, wb;
+    load(c, va, wa, vb, wb);
+    solveFrictionRows(c, va, wa, vb, wb, omega);
+    store(c, va, wa, vb, wb);
+    for (int i = 0; i < kMaxManifoldPoints; ++i) c.delta[i] = 0.0f;
+    // Links take part that touch; more join when the solve makes them touch. A link that still
+    // pushes but clearly separates (a box that was landing and now rises, a speculative contact
+    // that started from a weight estimate) lets go first.
+    links[j].held = false;
+    links[j].active = touches(c);
+    if (!links[j].active) release(c);
+  }
+
+  bool solved = false;
+  for (int round = 0; round < kChainRounds && !solved; ++round) {
+    computeRhs(bodies, cs, links, n, useBias);
+    if (!factorChain(links, n)) break;
+    substituteChain(links, n);
+    bool pulling = false;
+    for (uint32_t j = 0; j < n; ++j) {
+      ChainLink& link = links[j];
+      if (!link.active) continue;
+      ContactConstraint& c = cs[j];
+      float total = 0.0f, lowest = 0.0f;
+      for (int i = 0; i < c.count; ++i) {
+        const float next = c.points[i].normalImpulse + pointChange(link, i, omega);
+        lowest = std::min(lowest, next);
+        total += next;
+      }
+      if (lowest >= 0.0f) continue;
+      pulling = true;
+      link.active = false;
+      if (total >= 0.0f) {
+        // A corner lifts (a tilt): this link keeps its impulses through the chain solve and gets
+        // the manifold's projected passes after it.
+        link.held = true;
+        continue;
+      }
+      // The whole contact wants to separate: let it go (λ = 0, applied now, so the next round
+      // solves the others against it). If that was wrong, it touches again and rejoins below.
+      release(c);
+    }
+    if (pulling) continue;
+    for (uint32_t j = 0; j < n; ++j) {
+      if (!links[j].active) continue;
+      float applied[kMaxManifoldPoints] = {};
+      for (int i = 0; i < cs[j].count; ++i) applied[i] = pointChange(links[j], i, omega);
+      commit(cs[j], applied);
+    }
+    // Links left out that the solve now pushes into join, and the chain is solved again from here.
+    solved = true;
+    for (uint32_t j = 0; j < n; ++j)
+      if (!links[j].active && !links[j].held && touches(cs[j])) {
+        links[j].active = true;
+        solved = false;
+      }
+  }
+  // Held links, or all of them when the rounds did not settle, get the manifold's own passes.
+  for (uint32_t j = 0; j < n; ++j) {
+    if (solved && !links[j].held) continue;
+    ContactConstraint& c = cs[j];
+    float before[kMaxManifoldPoints];
+    for (int i = 0; i < kMaxManifoldPoints; ++i) before[i] = c.delta[i];
+    Vec3 va, wa, vb, wb;
+    load(c, va, wa, vb, wb);
+    solveNormalRows(c, va, wa, vb, wb, omega, useBias);
+    store(c, va, wa, vb, wb);
+    for (int i = 0; i < kMaxManifoldPoints; ++i) c.delta[i] += before[i];
+  }
+
+  float residual = 0.0f;
+  double change = 0.0;
+  for (uint32_t j = 0; j < n; ++j) {
+    const ContactConstraint& c = cs[j];
+    // |Δλ| K_ii: the velocity correction of the row over the whole sweep.
+    for (int i = 0; i < c.count; ++i)
+      if (c.points[i].normalMass > 0.0f)
+        residual = std::max(residual, std::fabs(c.delta[i]) * c.normalCoupling[i][i]);
+    change += squaredChange(c);
+  }
+  return {residual, change};
+}
+
+}  // namespace haif

@@ -1,0 +1,227 @@
+// A chain of contacts (a stack) has its normal rows solved exactly in one sweep: the result must be
+// the complementarity solution (every row pushes only where it touches), which plain sweeps only
+// approach one contact at a time.
+#include "dynamics/contact_chain.h"
+#include "support/physics_test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+namespace haif {
+namespace {
+
+// Unit cubes (mass 1) on a static ground (body 0), given by their centres, and hand-made face
+// contacts between them: no gravity, friction off, so the normal rows alone decide.
+struct Pile {
+  BodyStore bodies;
+  std::vector<Contact> contacts;
+  std::vector<ContactConstraint> rows;
+
+  Pile() { bodies.add(BodyKind::Static, Transform{}, 0.0f, Mat3::Zero()); }
+  uint32_t box(float x, float y, float vy = 0.0f) {
+    Transform t;
+    t.p = Vec3(x, y, 0.0f);
+    const uint32_t id = bodies.add(BodyKind::Dynamic, t, 1.0f, Mat3::Identity() * (1.0f / 6.0f));
+    bodies.v[id] = Vec3(0.0f, vy, 0.0f);
+    return id;
+  }
+  // Body `upper` rests on `lower` over the square of half size 0.5 around (x, y, 0).
+  void touch(uint32_t lower, uint32_t upper, float x, float y, float impulse = 0.0f) {
+    Contact c;
+    c.a = lower;
+    c.b = upper;
+    c.friction = 0.0f;
+    const float corners[4][2] = {{-0.5f, -0.5f}, {0.5f, -0.5f}, {0.5f, 0.5f}, {-0.5f, 0.5f}};
+    c.manifold.count = 4;
+    for (int i = 0; i < 4; ++i) {
+      ContactPoint& p = c.manifold.points[i];
+      p.position = Vec3(x + corners[i][0], y, corners[i][1]);
+      p.normal = Vec3::UnitY();
+      p.depth = 0.0f;
+      p.id = uint32_t(i);
+      c.normalImpulse[i] = impulse;
+    }
+    contacts.push_back(c);
+  }
+  // Rows in the given (solve) order of contacts; true when they form a chain.
+  bool prepare(std::vector<ChainLink>& links) {
+    SolverParams sp;
+    rows.resize(contacts.size());
+    for (size_t k = 0; k < contacts.size(); ++k) prepareContact(bodies, contacts[k], uint32_t(k), sp, rows[k]);
+    links.resize(rows.size());
+    std::vector<uint32_t> mark(bodies.size());
+    return prepareChain(contacts.data(), rows.data(), uint32_t(rows.size()), mark.data(), links.data());
+  }
+  float gap(const ContactConstraint& c, int i) const {
+    const ContactConstraint::Point& p = c.points[i];
+    return p.normal.dot(bodies.v[c.b] - bodies.v[c.a]) + p.rBxn.dot(bodies.w[c.b]) - p.rAxn.dot(bodies.w[c.a]) +
+           p.bias;
+  }
+  // The solution of the normal problem: no row approaches, no row pulls, and a row pushes only
+  // where it does not separate.
+  void expectComplementary() const {
+    for (size_t k = 0; k < rows.size(); ++k)
+      for (int i = 0; i < rows[k].count; ++i) {
+        const float g = gap(rows[k], i), l = rows[k].points[i].normalImpulse;
+        EXPECT_GE(g, -1e-4f) << "contact " << k << " point " << i << " approaches";
+        EXPECT_GE(l, 0.0f) << "contact " << k << " point " << i << " pulls";
+        EXPECT_LT(std::fabs(g * l), 1e-4f) << "contact " << k << " point " << i << " pushes while separating";
+      }
+  }
+};
+
+// Five boxes on the ground, contacts listed top down (the solve order), the top one falling at vTop.
+Pile column(int boxes, float vTop) {
+  Pile s;
+  uint32_t below = 0;
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
+  for (int h = 0; h < boxes; ++h) {
+    const uint32_t b = s.box(0.0f, 0.5f + float(h), h + 1 == boxes ? vTop : 0.0f);
+    pairs.push_back({below, b});
+    below = b;
+  }
+  for (int h = boxes; h-- > 0;) s.touch(pairs[h].first, pairs[h].second, 0.0f, float(h));
+  return s;
+}
+
+TEST(ContactChain, AStackIsAChain) {
+  Pile s = column(5, 0.0f);
+  std::vector<ChainLink> links;
+  EXPECT_TRUE(s.prepare(links));
+  for (const ChainLink& l : links) EXPECT_EQ(l.rank, 3);
+  for (size_t j = 0; j + 1 < links.size(); ++j) EXPECT_TRUE(links[j].coupledToNext) << "link " << j;
+  EXPECT_FALSE(links.back().coupledToNext);  // the ground contact: the ground is static
+}
+
+TEST(ContactChain, ABoxOnTwoBoxesIsNot) {
+  // The top box touches two boxes that both stand on the ground: a loop, not a chain.
+  Pile s;
+  const uint32_t left = s.box(-0.5f, 0.5f), right = s.box(0.5f, 0.5f), top = s.box(0.0f, 1.5f);
+  s.touch(left, top, -0.25f, 1.0f);
+  s.touch(right, top, 0.25f, 1.0f);
+  s.touch(0, left, -0.5f, 0.0f);
+  s.touch(0, right, 0.5f, 0.0f);
+  std::vector<ChainLink> links;
+  EXPECT_FALSE(s.prepare(links));
+}
+
+TEST(ContactChain, OneSweepStopsALandingOnAStack) {
+  Pile s = column(5, -2.0f);
+  std::vector<ChainLink> links;
+  ASSERT_TRUE(s.prepare(links));
+  solveChainIteration(s.bodies, s.rows.data(), links.data(), uint32_t(links.size()), 1.0f, true);
+  s.expectComplementary();
+  // Inelastic contacts on a static ground: everything stops, and every contact passes the top
+  // box's momentum (2 N s) on to the one below.
+  for (uint32_t b = 1; b < s.bodies.size(); ++b) {
+    EXPECT_NEAR(s.bodies.v[b].norm(), 0.0f, 1e-4f) << "box " << b;
+    EXPECT_NEAR(s.bodies.w[b].norm(), 0.0f, 1e-4f) << "box " << b;
+  }
+  for (size_t k = 0; k < s.rows.size(); ++k) {
+    float total = 0.0f;
+    for (int i = 0; i < 4; ++i) total += s.rows[k].points[i].normalImpulse;
+    EXPECT_NEAR(total, 2.0f, 1e-4f) << "contact " << k;
+  }
+}
+
+TEST(ContactChain, SweepsAloneLeaveTheLandingMoving) {
+  // Why the chain solve exists: one sweep contact by contact only shares the momentum along.
+  Pile s = column(5, -2.0f);
+  std::vector<ChainLink> links;
+  ASSERT_TRUE(s.prepare(links));
+  solveIteration(s.bodies, s.rows.data(), s.rows.size(), 1.0f, true);
+  float fastest = 0.0f;
+  for (uint32_t b = 1; b < s.bodies.size(); ++b) fastest = std::max(fastest, s.bodies.v[b].norm());
+  EXPECT_GT(fastest, 0.1f);
+}
+
+TEST(ContactChain, LetsGoOfAContactThatSeparates) {
+  // Box 2 flies up off box 1, which falls onto the ground; contact 1-2 still holds a warm-start
+  // impulse that it must give back, since it cannot pull.
+  Pile s;
+  const uint32_t b1 = s.box(0.0f, 0.5f, -1.0f), b2 = s.box(0.0f, 1.5f, 1.0f);
+  s.touch(b1, b2, 0.0f, 1.0f, 0.1f);
+  s.touch(0, b1, 0.0f, 0.0f);
+  std::vector<ChainLink> links;
+  ASSERT_TRUE(s.prepare(links));
+  solveChainIteration(s.bodies, s.rows.data(), links.data(), uint32_t(links.size()), 1.0f, true);
+  s.expectComplementary();
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(s.rows[0].points[i].normalImpulse, 0.0f);
+  EXPECT_NEAR(s.bodies.v[b2].y(), 0.6f, 1e-4f);  // 1 m/s less the 0.4 N s it was pushed with
+  EXPECT_NEAR(s.bodies.v[b1].y(), 0.0f, 1e-4f);  // stopped by the ground
+}
+
+TEST(ContactChain, TiltedLandingIsNoWorseThanSweeps) {
+  // The top box lands spinning about a horizontal axis: one edge of every contact lifts, so each
+  // link sits the chain solve out and gets its manifold's passes. No point may pull, and the sweep
+  // must converge at least as fast as the plain one.
+  auto land = [](bool chain) {
+    Pile s = column(4, -1.0f);
+    s.bodies.w[4] = Vec3(3.0f, 0.0f, 0.0f);
+    std::vector<ChainLink> links;
+    EXPECT_TRUE(s.prepare(links));
+    float residual = 0.0f;
+    for (int sweep = 0; sweep < 20; ++sweep)
+      residual = chain ? solveChainIteration(s.bodies, s.rows.data(), links.data(), uint32_t(links.size()), 1.0f, true)
+                             .residual
+                       : solveIteration(s.bodies, s.rows.data(), s.rows.size(), 1.0f, true).residual;
+    for (const ContactConstraint& c : s.rows)
+      for (int i = 0; i < c.count; ++i) EXPECT_GE(c.points[i].normalImpulse, 0.0f);
+    return residual;
+  };
+  EXPECT_LE(land(true), 1.01f * land(false));
+}
+
+// A 10-box column dropped onto itself through 1 cm gaps, as in stacks_N.
+struct LandingRun {
+  double meanError = 0.0, maxError = 0.0;
+  float deepest = 0.0f;
+};
+
+LandingRun landColumn(int iterations, bool chain) {
+  WorldSettings ws;
+  ws.iterations = iterations;
+  ws.chainSolve = chain;
+  World w(ws);
+  test::addGround(w);
+  test::addColumn(w, 10, 0.0f, 0.0f, 1.01f);
+  w.setSolveErrorInterval(1);
+  LandingRun r;
+  const int steps = 60;
+  for (int s = 0; s < steps; ++s) {
+    w.step();
+    r.meanError += w.lastStats().solveError / steps;
+    r.maxError = std::max(r.maxError, w.lastStats().solveError);
+    if (s >= 30) r.deepest = std::max(r.deepest, test::maxContactDepth(w));
+  }
+  return r;
+}
+
+TEST(ContactChain, ColumnLandsWithoutSolveErrorAtTwoIterations) {
+  const LandingRun chain = landColumn(2, true), sweeps = landColumn(2, false);
+  EXPECT_LT(chain.maxError, 1e-3) << "mean " << chain.meanError;
+  EXPECT_GT(sweeps.meanError, 0.1) << "2 sweeps alone should not settle the landing";
+  // And it rests: within the slop once landed.
+  EXPECT_LT(chain.deepest, 0.005f + 1e-3f);
+}
+
+TEST(ContactChain, SameStateForAnyThreadCount) {
+  auto run = [](int threads) {
+    WorldSettings ws;
+    ws.threads = threads;
+    ws.iterations = 4;
+    World w(ws);
+    test::addGround(w);
+    for (int s = 0; s < 8; ++s) test::addColumn(w, 12, 3.0f * float(s), 0.0f, 1.01f);
+    for (int s = 0; s < 120; ++s) w.step();
+    return w.stateHash();
+  };
+  const uint64_t one = run(1);
+  EXPECT_EQ(run(2), one);
+  EXPECT_EQ(run(4), one);
+}
+
+}  // namespace
+}  // namespace haif
