@@ -1,29 +1,32 @@
 #version 330 core
 // Sun with PCF shadows + hemispheric ambient, an anti-aliased fading grid on the ground, distance
 // fog towards the horizon colour, and sRGB encoding at the end (lighting itself is linear).
-// SURFACE (set by the renderer) picks the variant at compile time: 0 body, 1 ground, 2 box with
-// edge lines. llvmpipe runs both sides of every branch under a mask, so a runtime switch would
-// make every fragment pay for the grid, the edges and the specular at once.
+// SURFACE (set by the renderer) picks the variant at compile time: 0 body, 1 ground (both after
+// scene.vert), 2 box with edge lines (after box.vert). llvmpipe runs both sides of every branch
+// under a mask, so a runtime switch would make every fragment pay for the grid, the edges and the
+// specular at once.
 
 #ifndef SURFACE
 #define SURFACE 0
 #endif
-#ifndef RECEIVES_SHADOW  // 0: a ground variant for where no shadow can fall
+#ifndef RECEIVES_SHADOW  // 0: ground where no shadow can fall, box faces turned from the sun
 #define RECEIVES_SHADOW 1
 #endif
 
+in vec3 vShadowCoord;
+#if SURFACE != 2
 in vec3 vWorldPos;
 in vec3 vNormal;
 in vec3 vColor;
 in float vEmissive;
-in vec3 vShadowCoord;
-in vec3 vUnitPos;
-flat in vec3 vScale;
+#endif
 #if SURFACE == 1
 in vec3 vAmbient;  // per vertex: ground faces are flat
 in vec3 vSunLit;   // sun * max(n.l, 0)
 #endif
-#if SURFACE == 2
+#if SURFACE == 2  // from box.vert
+in vec4 vEdge;     // metres to the face's four edges
+flat in float vEdgeWidth;
 in vec3 vBase;     // albedo * ambient (per vertex: box faces are flat)
 in vec3 vSunLit;   // albedo * sun * max(n.l, 0)
 in vec3 vSpec;     // sun * specular, zero on faces turned from the sun
@@ -77,16 +80,14 @@ vec3 encodeSrgb(vec3 c) {
 // does not skip hidden ones), so this shader is kept short.
 void main() {
   // Darken near box edges (in metres) so stacked boxes of similar colour stay readable.
-  vec3 a = abs(vUnitPos);
-  vec3 edgeDist = (1.0 - a) * vScale;
-  // Ignore the axis of the face we are on (its |unit coordinate| is 1).
-  vec3 onFace = step(0.999, a);
-  edgeDist += onFace * 1e3;
-  float e = min(min(edgeDist.x, edgeDist.y), edgeDist.z);
+  float e = min(min(vEdge.x, vEdge.y), min(vEdge.z, vEdge.w));
   float px = fwidth(e);
-  float width = 0.03 * min(min(vScale.x, vScale.y), vScale.z);
-  float edge = 1.0 - smoothstep(width, width + px * 1.5, e);
+  float edge = 1.0 - smoothstep(vEdgeWidth, vEdgeWidth + px * 1.5, e);
+#if RECEIVES_SHADOW
   float shadow = shadowFactor();
+#else
+  float shadow = 1.0;  // a face turned away from the sun: vSunLit and vSpec are zero
+#endif
   vec3 lit = (1.0 - 0.35 * edge) * (vBase + vSunLit * shadow) + vSpec * shadow;
   lit = mix(lit, uFogColor, vFog * 0.5);
   fragColor = vec4(encodeSrgb(lit), 1.0);

@@ -1,5 +1,5 @@
 #version 330 core
-// Instanced bodies and the ground. Per-vertex: unit shape; per-instance: rigid transform, scale
+// Instanced bodies but boxes (box.vert), and the ground. Per-vertex: unit shape; per-instance: rigid transform, scale
 // and colour. Lighting happens in world space in scene.frag.
 
 layout(location = 0) in vec3 aPos;       // unit-shape position
@@ -21,8 +21,6 @@ out vec3 vNormal;
 out vec3 vColor;
 out float vEmissive;
 out vec3 vShadowCoord;   // shadow map coordinates and depth in [0, 1] (the sun's view is orthographic)
-out vec3 vUnitPos;       // position on the unit shape, for box edge lines
-flat out vec3 vScale;
 
 #ifndef SURFACE
 #define SURFACE 0
@@ -37,36 +35,21 @@ uniform vec3 uEye;
 out vec3 vAmbient;
 out vec3 vSunLit;  // sun * max(n.l, 0)
 #endif
-#if SURFACE == 2
-// Boxes are lit per vertex (flat faces, distant sun: exact but for the tiny change of the view
-// direction across a face); scene.frag adds the shadow and the edge lines.
-uniform vec3 uSunDir;
-uniform vec3 uSunColor;
-uniform vec3 uSkyAmbient;
-uniform vec3 uGroundAmbient;
-uniform vec3 uEye;
-uniform float uFogDistance;
-out vec3 vBase;
-out vec3 vSunLit;
-out vec3 vSpec;
-out float vFog;
-#endif
 
 vec3 rotate(vec4 q, vec3 v) {
   vec3 t = 2.0 * cross(q.xyz, v);
   return v + q.w * t + cross(q.xyz, t);
 }
 
-// Box faces the renderer found inside a neighbouring box (bits 0-5: bit 2 * axis + (normal > 0)) or
-// hidden from the camera behind nearer boxes (the same bits shifted by 6) are sent outside the clip
-// volume; all corners of a face move together, so its triangles are dropped whole.
+// Faces of a ground box the renderer found inside a neighbouring box (bit 2 * axis + (normal > 0))
+// are sent outside the clip volume; all corners of a face move together, so its triangles are
+// dropped whole.
 bool hiddenFace(vec3 normal) {
   if (iHiddenFaces < 0.5) return false;
   vec3 a = abs(normal);
   int axis = a.x > 0.5 ? 0 : (a.y > 0.5 ? 1 : 2);
   int bit = 2 * axis + (normal[axis] > 0.0 ? 1 : 0);
-  int bits = int(iHiddenFaces);
-  return (((bits | (bits >> 6)) >> bit) & 1) != 0;
+  return ((int(iHiddenFaces) >> bit) & 1) != 0;
 }
 
 void main() {
@@ -79,26 +62,10 @@ void main() {
   vColor = iColor.rgb;
   vEmissive = iColor.a;
   vShadowCoord = (uLightViewProj * vec4(world + n * uShadowNormalOffset, 1.0)).xyz * 0.5 + 0.5;
-  vUnitPos = aPos;
-  vScale = iScale;
   gl_Position = hiddenFace(aNormal) ? vec4(2.0, 2.0, 2.0, 1.0) : uViewProj * vec4(world, 1.0);
 #if SURFACE == 1
   vec3 nf = dot(n, uEye - world) < 0.0 ? -n : n;  // the two-sided plane seen from below
   vAmbient = mix(uGroundAmbient, uSkyAmbient, nf.y * 0.5 + 0.5);
   vSunLit = uSunColor * max(dot(nf, uSunDir), 0.0);
-#endif
-#if SURFACE == 2
-  float ndl = max(dot(n, uSunDir), 0.0);
-  vec3 ambient = mix(uGroundAmbient, uSkyAmbient, n.y * 0.5 + 0.5);
-  vec3 toEye = uEye - world;
-  vec3 h = normalize(uSunDir + normalize(toEye));
-  float nh = max(dot(n, h), 0.0);
-  float nh8 = nh * nh; nh8 *= nh8; nh8 *= nh8;  // (n.h)^48 by squaring, as in scene.frag
-  float spec = ndl > 0.0 ? nh8 * nh8 * nh8 * nh8 * nh8 * nh8 * 0.12 : 0.0;
-  vBase = iColor.rgb * ambient;
-  vSunLit = iColor.rgb * uSunColor * ndl;
-  vSpec = uSunColor * spec;
-  float d2 = dot(toEye, toEye);
-  vFog = 1.0 - exp(-d2 / (uFogDistance * uFogDistance));
 #endif
 }

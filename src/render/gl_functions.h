@@ -47,6 +47,7 @@ class GlContext;
   X(PFNGLVERTEXATTRIBDIVISORPROC, VertexAttribDivisor, "glVertexAttribDivisor")     \
   X(PFNGLDRAWELEMENTSINSTANCEDPROC, DrawElementsInstanced, "glDrawElementsInstanced") \
   X(PFNGLDRAWARRAYSPROC, DrawArrays, "glDrawArrays")                                \
+  X(PFNGLDRAWELEMENTSPROC, DrawElements, "glDrawElements")                          \
   X(PFNGLCREATESHADERPROC, CreateShader, "glCreateShader")                          \
   X(PFNGLSHADERSOURCEPROC, ShaderSource, "glShaderSource")                          \
   X(PFNGLCOMPILESHADERPROC, CompileShader, "glCompileShader")                       \

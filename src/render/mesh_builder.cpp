@@ -32,12 +32,12 @@ void appendSphereBand(MeshData& m, int slices, int stacks, float theta0, float t
     }
 }
 
-// For each axis and sign (from firstSign up to +1), one quad whose corners wind counter-clockwise
-// seen from outside.
-MeshData boxFaces(int firstSign) {
+}  // namespace
+
+MeshData makeBoxMesh() {
   MeshData m;
   for (int axis = 0; axis < 3; ++axis)
-    for (int s = firstSign; s <= 1; s += 2) {
+    for (int s = -1; s <= 1; s += 2) {
       float n[3] = {0, 0, 0};
       n[axis] = static_cast<float>(s);
       const int u = (axis + 1) % 3, v = (axis + 2) % 3;
@@ -58,12 +58,6 @@ MeshData boxFaces(int firstSign) {
   m.boundRadius = std::sqrt(3.f);
   return m;
 }
-
-}  // namespace
-
-MeshData makeBoxMesh() { return boxFaces(-1); }
-
-MeshData makeBoxCornerMesh() { return boxFaces(1); }
 
 MeshData makeSphereMesh(int slices, int stacks) {
   MeshData m;

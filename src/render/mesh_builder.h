@@ -17,9 +17,6 @@ struct MeshData {
 
 /// Unit box [-1,1]^3 with flat faces (scaled by half extents per instance).
 MeshData makeBoxMesh();
-/// The +x, +y and +z faces of the unit box only: what a distant light can see of a box once the
-/// vertex shader mirrors them onto the faces turned towards it (half the vertices of makeBoxMesh).
-MeshData makeBoxCornerMesh();
 /// Unit sphere (scaled by radius per instance).
 MeshData makeSphereMesh(int slices, int stacks);
 /// Unit-radius capsule with zero half height; vertices carry the cap side for stretching.

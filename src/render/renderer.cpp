@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstring>
 #include <unordered_map>
 
+#include "render/box_face_stream.h"
 #include "render/box_occlusion.h"
 #include "render/gl_context.h"
 #include "render/gl_functions.h"
@@ -25,19 +27,27 @@ namespace haif::render {
 namespace {
 
 // Per-instance record: position 3, quaternion 4, scale 3, capsule stretch 1, colour+emissive 4,
-// hidden box faces 1 (as a float: a HiddenBoxFaces mask in bits 0-5, faces the camera cannot see
-// (BoxOcclusion) in bits 6-11, which only the main pass drops; 0 for other shapes).
+// hidden box faces 1 (as a float: a HiddenBoxFaces mask of a ground box; 0 for other shapes).
+// Dynamic boxes are not instances: they go through BoxFaceStream.
 constexpr int kInstanceFloats = 16;
 constexpr GLsizei kInstanceStride = kInstanceFloats * sizeof(float);
 constexpr float kPlaneHalfSize = 1000.f;
 constexpr int kSkyRows = 24;
 constexpr GLenum kPackInvertMesa = 0x8758;  // GL_PACK_INVERT_MESA (GL_MESA_pack_invert)  // must match kRows in shaders/sky.vert
 
-// Ordering of draw groups: bodies first (each group front to back), the ground after them, so
-// early depth testing skips most hidden pixels; fragment work dominates on llvmpipe.
+// Ordering of draw groups: boxes (the face stream), other bodies (each group front to back), the
+// ground after them, so early depth testing skips most hidden pixels; fragment work dominates on
+// llvmpipe.
 enum GroupKind : uint32_t { kBox, kSphere, kCapsule, kHull, kTriMesh, kGroundBox, kGroundPlane };
-// kSurfaceGroundUnshadowed: the ground where no shadow can fall (no shadow map lookup).
-enum Surface : int { kSurfaceBody = 0, kSurfaceGround = 1, kSurfaceBox = 2, kSurfaceGroundUnshadowed = 3 };
+// kSurfaceGroundUnshadowed: the ground where no shadow can fall; kSurfaceBoxAway: box faces turned
+// away from the sun (neither samples the shadow map).
+enum Surface : int {
+  kSurfaceBody = 0,
+  kSurfaceGround = 1,
+  kSurfaceBox = 2,
+  kSurfaceGroundUnshadowed = 3,
+  kSurfaceBoxAway = 4
+};
 
 struct GpuMesh {
   GLuint vao = 0, vbo = 0, ibo = 0;
@@ -48,7 +58,6 @@ struct GpuMesh {
 struct DrawGroup {
   const GpuMesh* mesh;
   size_t first, count;
-  size_t cameraCount;  // the main pass draws only the first cameraCount (the rest are hidden from the camera)
   int surface;
   bool cull;          // closed shapes only; open triangle meshes and planes are two-sided
   bool castsShadow;
@@ -70,13 +79,18 @@ struct Renderer::Impl {
   int samples = 1;
   std::unique_ptr<GlContext> ctx;
   GlFunctions gl;
-  ShaderProgram sceneProgram[4], shadowProgram, skyProgram;  // scene: one variant per Surface
-  GpuMesh box, boxCorner, sphere, capsule, plane;  // boxCorner: the shadow pass's boxes
+  ShaderProgram sceneProgram[5], shadowProgram, boxShadowProgram, skyProgram;  // scene: one variant per Surface
+  GpuMesh box, sphere, capsule, plane;  // box: ground boxes (dynamic boxes go through boxStream)
   std::unordered_map<uint32_t, GpuMesh> meshes;
   GLuint instanceVbo = 0;
   size_t instanceCapacity = 0;  // bytes
   GLuint msaaFbo = 0, msaaColor = 0, msaaDepth = 0, resolveFbo = 0, resolveColor = 0;
   GLuint shadowFbo = 0, shadowTex = 0, emptyVao = 0;
+  // The box face streams: camera faces (BoxFaceVertex) and shadow faces (xyz), one shared quad index buffer.
+  BoxFaceStream boxStream;
+  std::vector<uint32_t> quadIndices;
+  GLuint boxVao = 0, boxVbo = 0, boxShadowVao = 0, boxShadowVbo = 0, quadIbo = 0;
+  size_t boxVboCapacity = 0, boxShadowVboCapacity = 0, quadIboFaces = 0;  // bytes, bytes, quads
   bool shadowMapEmpty = false;  // the map holds only the far depth (cleared while nothing casts)
   // Reused every frame so steady-state rendering does not allocate.
   std::vector<float> staging;
@@ -108,7 +122,7 @@ struct Renderer::Impl {
     if (!ctx) return;
     std::string ignored;
     ctx->makeCurrent(&ignored);
-    for (GpuMesh* m : {&box, &boxCorner, &sphere, &capsule, &plane}) destroyMesh(*m);
+    for (GpuMesh* m : {&box, &sphere, &capsule, &plane}) destroyMesh(*m);
     for (auto& kv : meshes) destroyMesh(kv.second);
     if (gl.DeleteBuffers) {
       gl.DeleteBuffers(1, &instanceVbo);
@@ -120,6 +134,11 @@ struct Renderer::Impl {
       gl.DeleteRenderbuffers(1, &resolveColor);
       gl.DeleteTextures(1, &shadowTex);
       gl.DeleteVertexArrays(1, &emptyVao);
+      gl.DeleteVertexArrays(1, &boxVao);
+      gl.DeleteVertexArrays(1, &boxShadowVao);
+      gl.DeleteBuffers(1, &boxVbo);
+      gl.DeleteBuffers(1, &boxShadowVbo);
+      gl.DeleteBuffers(1, &quadIbo);
     }
   }
 
@@ -160,6 +179,76 @@ struct Renderer::Impl {
     m.boundRadius = data.boundRadius;
   }
 
+  // Vertex arrays of the two box face streams; their buffers are sized by uploadBoxStreams.
+  void createBoxStreamBuffers() {
+    static_assert(sizeof(BoxFaceVertex) == 14 * sizeof(float), "BoxFaceVertex must be tightly packed");
+    gl.GenBuffers(1, &quadIbo);
+    gl.GenVertexArrays(1, &boxVao);
+    gl.GenBuffers(1, &boxVbo);
+    gl.BindVertexArray(boxVao);
+    gl.BindBuffer(GL_ARRAY_BUFFER, boxVbo);
+    const GLsizei stride = sizeof(BoxFaceVertex);
+    const GLint sizes[5] = {3, 3, 3, 4, 1};
+    const size_t offsets[5] = {offsetof(BoxFaceVertex, position), offsetof(BoxFaceVertex, normal),
+                               offsetof(BoxFaceVertex, color), offsetof(BoxFaceVertex, edge),
+                               offsetof(BoxFaceVertex, edgeWidth)};
+    for (GLuint a = 0; a < 5; ++a) {
+      gl.EnableVertexAttribArray(a);
+      gl.VertexAttribPointer(a, sizes[a], GL_FLOAT, GL_FALSE, stride, reinterpret_cast<void*>(offsets[a]));
+    }
+    gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, quadIbo);
+    gl.GenVertexArrays(1, &boxShadowVao);
+    gl.GenBuffers(1, &boxShadowVbo);
+    gl.BindVertexArray(boxShadowVao);
+    gl.BindBuffer(GL_ARRAY_BUFFER, boxShadowVbo);
+    gl.EnableVertexAttribArray(0);
+    gl.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+    gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, quadIbo);
+    gl.BindVertexArray(0);
+  }
+
+  // Makes vbo hold at least `bytes`, growing it geometrically (a slowly growing scene must not
+  // reallocate every frame), and copies them from data unless it is null. Leaves vbo bound.
+  void uploadGrowing(GLuint vbo, size_t* capacity, const void* data, size_t bytes) {
+    gl.BindBuffer(GL_ARRAY_BUFFER, vbo);
+    if (bytes > *capacity) {
+      *capacity = std::max(bytes, *capacity * 2);
+      gl.BufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(*capacity), nullptr, GL_DYNAMIC_DRAW);
+    }
+    if (bytes && data) gl.BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), data);
+  }
+
+  void uploadBoxStreams() {
+    // One buffer: the faces turned to the sun, then those turned away.
+    const auto& sunward = boxStream.sunwardVertices();
+    const auto& away = boxStream.awayVertices();
+    const size_t sunwardBytes = sunward.size() * sizeof(BoxFaceVertex);
+    uploadGrowing(boxVbo, &boxVboCapacity, nullptr, sunwardBytes + away.size() * sizeof(BoxFaceVertex));
+    if (!sunward.empty()) gl.BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(sunwardBytes), sunward.data());
+    if (!away.empty())
+      gl.BufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(sunwardBytes),
+                       static_cast<GLsizeiptr>(away.size() * sizeof(BoxFaceVertex)), away.data());
+    const auto& sh = boxStream.shadowPositions();
+    uploadGrowing(boxShadowVbo, &boxShadowVboCapacity, sh.data(), sh.size() * sizeof(float));
+    const size_t faces = std::max(boxStream.sunwardFaces() + boxStream.awayFaces(), boxStream.shadowFaces());
+    if (faces > quadIboFaces) {
+      quadIboFaces = std::max(faces, quadIboFaces * 2);
+      BoxFaceStream::growQuadIndices(quadIboFaces, quadIndices);
+      gl.BindVertexArray(0);
+      gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, quadIbo);
+      gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(quadIndices.size() * sizeof(uint32_t)),
+                    quadIndices.data(), GL_STATIC_DRAW);
+    }
+  }
+
+  // One non-instanced draw of quads [first, first + faces) of vao.
+  void drawQuads(GLuint vao, size_t first, size_t faces) {
+    if (!faces) return;
+    gl.BindVertexArray(vao);
+    gl.DrawElements(GL_TRIANGLES, static_cast<GLsizei>(6 * faces), GL_UNSIGNED_INT,
+                    reinterpret_cast<void*>(6 * first * sizeof(uint32_t)));
+  }
+
   bool init(std::string* error) {
     if (opt.width <= 0 || opt.height <= 0 || opt.width > 16384 || opt.height > 16384) {
       if (error) *error = "renderer: invalid image size " + std::to_string(opt.width) + "x" + std::to_string(opt.height);
@@ -167,23 +256,25 @@ struct Renderer::Impl {
     }
     ctx = createOsMesaContext(error);
     if (!ctx || !gl.load(*ctx, error)) return false;
-    for (int surface : {kSurfaceBody, kSurfaceGround, kSurfaceBox, kSurfaceGroundUnshadowed}) {
-      const std::string defines = surface == kSurfaceGroundUnshadowed
-                                      ? "#define SURFACE 1\n#define RECEIVES_SHADOW 0\n"
-                                      : "#define SURFACE " + std::to_string(surface) + "\n";
-      if (!sceneProgram[surface].load(gl, opt.shaderDir, "scene.vert", "scene.frag", error, defines)) return false;
+    for (int surface : {kSurfaceBody, kSurfaceGround, kSurfaceBox, kSurfaceGroundUnshadowed, kSurfaceBoxAway}) {
+      const std::string defines = surface == kSurfaceGroundUnshadowed ? "#define SURFACE 1\n#define RECEIVES_SHADOW 0\n"
+                                  : surface == kSurfaceBoxAway ? "#define SURFACE 2\n#define RECEIVES_SHADOW 0\n"
+                                                               : "#define SURFACE " + std::to_string(surface) + "\n";
+      const char* vert = surface == kSurfaceBox || surface == kSurfaceBoxAway ? "box.vert" : "scene.vert";
+      if (!sceneProgram[surface].load(gl, opt.shaderDir, vert, "scene.frag", error, defines)) return false;
     }
     if (!shadowProgram.load(gl, opt.shaderDir, "shadow.vert", "shadow.frag", error) ||
+        !boxShadowProgram.load(gl, opt.shaderDir, "box_shadow.vert", "shadow.frag", error) ||
         !skyProgram.load(gl, opt.shaderDir, "sky.vert", "sky.frag", error))
       return false;
 
     upload(makeBoxMesh(), box);
-    upload(makeBoxCornerMesh(), boxCorner);
     upload(makeSphereMesh(24, 14), sphere);
     upload(makeCapsuleMesh(24, 7), capsule);
     upload(makePlaneMesh(), plane);
     gl.GenBuffers(1, &instanceVbo);
     gl.GenVertexArrays(1, &emptyVao);
+    createBoxStreamBuffers();
 
     GLint maxSamples = 1;
     gl.GetIntegerv(GL_MAX_SAMPLES, &maxSamples);
@@ -347,10 +438,10 @@ struct Renderer::Impl {
 
   size_t instanceCount() const { return staging.size() / kInstanceFloats; }
 
-  // A group of the instances pushed since `first`; the main pass draws the first cameraCount of them.
-  void addGroup(const GpuMesh* mesh, size_t first, int surface, bool cull, bool casts, size_t cameraCount = SIZE_MAX) {
+  // A group of the instances pushed since `first`.
+  void addGroup(const GpuMesh* mesh, size_t first, int surface, bool cull, bool casts) {
     const size_t count = instanceCount() - first;
-    if (count) groups.push_back({mesh, first, count, std::min(count, cameraCount), surface, cull, casts});
+    if (count) groups.push_back({mesh, first, count, surface, cull, casts});
   }
 
   // Bounds of everything but the ground (for framing and the shadow frustum) and the draw kind of
@@ -414,22 +505,18 @@ struct Renderer::Impl {
 
     findHiddenBoxFaces(f);
     groundFaces.clear();
-    // The dynamic boxes come first (kBox sorts first): boxes the camera cannot see at all go after
-    // the others, so the main pass draws a prefix of the group and the shadow pass all of it.
+    // The dynamic boxes come first (kBox sorts first), front to back: the camera stream gets the
+    // faces the camera may see, the shadow stream the faces turned to the sun of every box.
     size_t boxes = 0;
     while (boxes < order.size() && order[boxes].kind == kBox) ++boxes;
     findOccludedBoxes(view, boxes);
-    size_t seen = 0;
-    for (int hidden = 0; hidden < 2; ++hidden)
-      for (size_t k = 0; k < boxes; ++k) {
-        if (occludedBoxes[k] != hidden) continue;
-        const Instance& in = f.instances[order[k].index];
-        pushInstance({in.position[0], in.position[1], in.position[2]}, in.orientation,
-                     {in.halfExtents[0], in.halfExtents[1], in.halfExtents[2]}, 0.f, instanceColor(in, f.mode), 0.f,
-                     hiddenMasks[k] | (hidden ? 0u : static_cast<unsigned>(occludedFaces[k]) << 6));
-        seen += hidden ? 0 : 1;
-      }
-    addGroup(&box, 0, kSurfaceBox, true, true, seen);
+    boxStream.clear();
+    for (size_t k = 0; k < boxes; ++k) {
+      if (!occludedBoxes[k])
+        boxStream.addCameraFaces(boxPoses[k], instanceColor(f.instances[order[k].index], f.mode),
+                                 hiddenMasks[k] | occludedFaces[k], eye, kSunDir);
+      boxStream.addShadowFaces(boxPoses[k], hiddenMasks[k], kSunDir);
+    }
     size_t groupStart = instanceCount(), boxIndex = boxes;
     for (size_t k = boxes; k < order.size(); ++k) {
       const SortItem& s = order[k];
@@ -597,6 +684,7 @@ struct Renderer::Impl {
     const size_t groupsBeforeMarkers = groups.size();
     buildContactMarkers(f, meanRadius);
     uploadInstances();
+    uploadBoxStreams();
     mark(&phases.prepare);
 
     const Vec3 focus = bounds.valid ? bounds.center() : Vec3{0.f, 0.f, 0.f};
@@ -606,7 +694,7 @@ struct Renderer::Impl {
     // ---- shadow pass ----
     float texelWorld = 0.f;
     Mat4 lightVP;
-    bool shadows = false;
+    bool shadows = boxStream.shadowFaces() > 0;
     for (size_t i = 0; i < groupsBeforeMarkers; ++i) shadows |= groups[i].castsShadow;
     shadows = shadows && opt.shadowMapSize > 0;
     gl.Enable(GL_DEPTH_TEST);
@@ -620,20 +708,16 @@ struct Renderer::Impl {
       gl.Clear(GL_DEPTH_BUFFER_BIT);
       gl.Enable(GL_POLYGON_OFFSET_FILL);
       gl.PolygonOffset(1.5f, 3.f);
+      // Boxes: only the three faces turned to the sun (the ones culling would keep); their
+      // winding is not checked, so no face culling.
+      boxShadowProgram.use();
+      gl.UniformMatrix4fv(boxShadowProgram.uniform("uLightViewProj"), 1, GL_FALSE, lightVP.m);
+      gl.Disable(GL_CULL_FACE);
+      drawQuads(boxShadowVao, 0, boxStream.shadowFaces());
       shadowProgram.use();
       gl.UniformMatrix4fv(shadowProgram.uniform("uLightViewProj"), 1, GL_FALSE, lightVP.m);
-      gl.Uniform3f(shadowProgram.uniform("uSunDir"), kSunDir.x, kSunDir.y, kSunDir.z);
-      const GLint boxCornerLoc = shadowProgram.uniform("uBoxCorner");
-      for (size_t i = 0; i < groupsBeforeMarkers; ++i) {
-        if (!groups[i].castsShadow) continue;
-        // Boxes: only the three faces turned to the sun (the ones culling would keep), from half
-        // the vertices; this pass is bound by vertex work.
-        DrawGroup g = groups[i];
-        const bool corner = g.mesh == &box;
-        if (corner) g.mesh = &boxCorner, g.cull = false;
-        gl.Uniform1i(boxCornerLoc, corner ? 1 : 0);
-        drawGroup(g);
-      }
+      for (size_t i = 0; i < groupsBeforeMarkers; ++i)
+        if (groups[i].castsShadow) drawGroup(groups[i]);
       gl.Disable(GL_POLYGON_OFFSET_FILL);
       shadowMapEmpty = false;
     } else if (!shadowMapEmpty) {
@@ -681,10 +765,13 @@ struct Renderer::Impl {
     } else {
       shade = PixelRect{};
     }
-    int bound = -1;
-    for (DrawGroup g : groups) {
-      g.count = g.cameraCount;  // without the instances hidden from the camera
-      if (!g.count) continue;
+    gl.Enable(GL_CULL_FACE);
+    sceneProgram[kSurfaceBox].use();
+    drawQuads(boxVao, 0, boxStream.sunwardFaces());
+    sceneProgram[kSurfaceBoxAway].use();
+    drawQuads(boxVao, boxStream.sunwardFaces(), boxStream.awayFaces());
+    int bound = kSurfaceBoxAway;
+    for (const DrawGroup& g : groups) {
       if (g.surface == kSurfaceGround) {
         drawGroundGroup(g, shade);
         bound = -1;
