@@ -33,6 +33,7 @@ class GlContext;
   X(PFNGLREADPIXELSPROC, ReadPixels, "glReadPixels")                                \
   X(PFNGLPIXELSTOREIPROC, PixelStorei, "glPixelStorei")                             \
   X(PFNGLFINISHPROC, Finish, "glFinish")                                            \
+  X(PFNGLFLUSHPROC, Flush, "glFlush")                                              \
   X(PFNGLGENBUFFERSPROC, GenBuffers, "glGenBuffers")                                \
   X(PFNGLDELETEBUFFERSPROC, DeleteBuffers, "glDeleteBuffers")                       \
   X(PFNGLBINDBUFFERPROC, BindBuffer, "glBindBuffer")                                \

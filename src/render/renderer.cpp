@@ -103,6 +103,7 @@ struct Renderer::Impl {
   std::vector<uint8_t> hiddenMasks;   // per entry of boxPoses
   BoxOcclusion occlusion;
   std::vector<uint8_t> occludedFaces, occludedBoxes;  // per dynamic box of boxPoses (BoxOcclusion::find)
+  size_t dynamicBoxes = 0;  // the first entries of order and boxPoses
   std::vector<uint8_t> readback;  // bottom-up rows, unless packInvert
   bool packInvert = false;        // GL_MESA_pack_invert: glReadPixels returns the top row first
   std::unique_ptr<TextRenderer> text;  // created on the first frame with the overlay enabled
@@ -218,7 +219,23 @@ struct Renderer::Impl {
     if (bytes && data) gl.BufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), data);
   }
 
-  void uploadBoxStreams() {
+  // The quad index buffer must cover `faces` quads; grows (rarely) before any draw of the frame.
+  void reserveQuadIndices(size_t faces) {
+    if (faces <= quadIboFaces) return;
+    quadIboFaces = std::max(faces, quadIboFaces * 2);
+    BoxFaceStream::growQuadIndices(quadIboFaces, quadIndices);
+    gl.BindVertexArray(0);
+    gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, quadIbo);
+    gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(quadIndices.size() * sizeof(uint32_t)),
+                  quadIndices.data(), GL_STATIC_DRAW);
+  }
+
+  void uploadShadowStream() {
+    const auto& sh = boxStream.shadowPositions();
+    uploadGrowing(boxShadowVbo, &boxShadowVboCapacity, sh.data(), sh.size() * sizeof(float));
+  }
+
+  void uploadCameraStream() {
     // One buffer: the faces turned to the sun, then those turned away.
     const auto& sunward = boxStream.sunwardVertices();
     const auto& away = boxStream.awayVertices();
@@ -228,17 +245,6 @@ struct Renderer::Impl {
     if (!away.empty())
       gl.BufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(sunwardBytes),
                        static_cast<GLsizeiptr>(away.size() * sizeof(BoxFaceVertex)), away.data());
-    const auto& sh = boxStream.shadowPositions();
-    uploadGrowing(boxShadowVbo, &boxShadowVboCapacity, sh.data(), sh.size() * sizeof(float));
-    const size_t faces = std::max(boxStream.sunwardFaces() + boxStream.awayFaces(), boxStream.shadowFaces());
-    if (faces > quadIboFaces) {
-      quadIboFaces = std::max(faces, quadIboFaces * 2);
-      BoxFaceStream::growQuadIndices(quadIboFaces, quadIndices);
-      gl.BindVertexArray(0);
-      gl.BindBuffer(GL_ELEMENT_ARRAY_BUFFER, quadIbo);
-      gl.BufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(quadIndices.size() * sizeof(uint32_t)),
-                    quadIndices.data(), GL_STATIC_DRAW);
-    }
   }
 
   // One non-instanced draw of quads [first, first + faces) of vao.
@@ -490,6 +496,15 @@ struct Renderer::Impl {
   }
 
   // Sorts instances into draw groups (front to back inside each) and fills the staging buffer.
+  // The camera stream: the faces of the dynamic boxes the camera may see, front to back.
+  void buildCameraFaces(const FrameInput& f, const ViewSetup& view) {
+    findOccludedBoxes(view, dynamicBoxes);
+    for (size_t k = 0; k < dynamicBoxes; ++k)
+      if (!occludedBoxes[k])
+        boxStream.addCameraFaces(boxPoses[k], instanceColor(f.instances[order[k].index], f.mode),
+                                 hiddenMasks[k] | occludedFaces[k], view.eye, kSunDir);
+  }
+
   void buildInstances(const FrameInput& f, const ViewSetup& view) {
     const Vec3 eye = view.eye;
     staging.clear();
@@ -505,20 +520,14 @@ struct Renderer::Impl {
 
     findHiddenBoxFaces(f);
     groundFaces.clear();
-    // The dynamic boxes come first (kBox sorts first), front to back: the camera stream gets the
-    // faces the camera may see, the shadow stream the faces turned to the sun of every box.
-    size_t boxes = 0;
-    while (boxes < order.size() && order[boxes].kind == kBox) ++boxes;
-    findOccludedBoxes(view, boxes);
+    // The dynamic boxes come first (kBox sorts first), front to back. The shadow stream gets the
+    // faces of every box turned to the sun; the camera stream is built later (buildCameraFaces).
+    dynamicBoxes = 0;
+    while (dynamicBoxes < order.size() && order[dynamicBoxes].kind == kBox) ++dynamicBoxes;
     boxStream.clear();
-    for (size_t k = 0; k < boxes; ++k) {
-      if (!occludedBoxes[k])
-        boxStream.addCameraFaces(boxPoses[k], instanceColor(f.instances[order[k].index], f.mode),
-                                 hiddenMasks[k] | occludedFaces[k], eye, kSunDir);
-      boxStream.addShadowFaces(boxPoses[k], hiddenMasks[k], kSunDir);
-    }
-    size_t groupStart = instanceCount(), boxIndex = boxes;
-    for (size_t k = boxes; k < order.size(); ++k) {
+    for (size_t k = 0; k < dynamicBoxes; ++k) boxStream.addShadowFaces(boxPoses[k], hiddenMasks[k], kSunDir);
+    size_t groupStart = instanceCount(), boxIndex = dynamicBoxes;
+    for (size_t k = dynamicBoxes; k < order.size(); ++k) {
       const SortItem& s = order[k];
       const Instance& in = f.instances[s.index];
       const Vec3 p{in.position[0], in.position[1], in.position[2]};
@@ -684,7 +693,9 @@ struct Renderer::Impl {
     const size_t groupsBeforeMarkers = groups.size();
     buildContactMarkers(f, meanRadius);
     uploadInstances();
-    uploadBoxStreams();
+    uploadShadowStream();
+    // Up to 6 camera faces per box (faces seen edge-on are kept), so one size fits both streams.
+    reserveQuadIndices(std::max(boxStream.shadowFaces(), 6 * dynamicBoxes));
     mark(&phases.prepare);
 
     const Vec3 focus = bounds.valid ? bounds.center() : Vec3{0.f, 0.f, 0.f};
@@ -725,6 +736,14 @@ struct Renderer::Impl {
       clearShadowMap();
     }
     mark(&phases.shadow);
+
+    // ---- what the camera sees of the boxes, while the rasteriser threads draw the shadow map ----
+    gl.Flush();
+    buildCameraFaces(f, view);
+    uploadCameraStream();
+    double cameraFacesMs = 0.0;
+    mark(&cameraFacesMs);
+    phases.prepare += cameraFacesMs;
 
     // ---- main pass ----
     const LinearColor horizon{srgbToLinear(0.80f), srgbToLinear(0.85f), srgbToLinear(0.90f)};
