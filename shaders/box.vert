@@ -22,8 +22,8 @@ uniform float uFogDistance;
 out vec3 vShadowCoord;  // shadow map coordinates and depth in [0, 1] (the sun's view is orthographic)
 out vec4 vEdge;
 flat out float vEdgeWidth;
-out vec3 vBase;    // albedo * ambient
-out vec3 vSunLit;  // albedo * sun * max(n.l, 0)
+flat out vec3 vBase;    // albedo * ambient (flat: constant on a face, nothing to interpolate)
+flat out vec3 vSunLit;  // albedo * sun * max(n.l, 0)
 out vec3 vSpec;    // sun * specular, zero on faces turned from the sun
 out float vFog;    // fog amount
 

@@ -21,14 +21,14 @@ in vec3 vColor;
 in float vEmissive;
 #endif
 #if SURFACE == 1
-in vec3 vAmbient;  // per vertex: ground faces are flat
-in vec3 vSunLit;   // sun * max(n.l, 0)
+flat in vec3 vAmbient;  // per face: ground faces are flat
+flat in vec3 vSunLit;   // sun * max(n.l, 0)
 #endif
 #if SURFACE == 2  // from box.vert
 in vec4 vEdge;     // metres to the face's four edges
 flat in float vEdgeWidth;
-in vec3 vBase;     // albedo * ambient (per vertex: box faces are flat)
-in vec3 vSunLit;   // albedo * sun * max(n.l, 0)
+flat in vec3 vBase;     // albedo * ambient (per face: box faces are flat)
+flat in vec3 vSunLit;   // albedo * sun * max(n.l, 0)
 in vec3 vSpec;     // sun * specular, zero on faces turned from the sun
 in float vFog;     // fog amount
 #endif

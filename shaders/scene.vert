@@ -32,8 +32,8 @@ uniform vec3 uSunColor;
 uniform vec3 uSkyAmbient;
 uniform vec3 uGroundAmbient;
 uniform vec3 uEye;
-out vec3 vAmbient;
-out vec3 vSunLit;  // sun * max(n.l, 0)
+flat out vec3 vAmbient;  // flat: constant on each (flat) face, so nothing to interpolate
+flat out vec3 vSunLit;   // sun * max(n.l, 0)
 #endif
 
 vec3 rotate(vec4 q, vec3 v) {
