@@ -85,10 +85,10 @@ void main() {
   float edge = 1.0 - smoothstep(vEdgeWidth, vEdgeWidth + px * 1.5, e);
 #if RECEIVES_SHADOW
   float shadow = shadowFactor();
-#else
-  float shadow = 1.0;  // a face turned away from the sun: vSunLit and vSpec are zero
-#endif
   vec3 lit = (1.0 - 0.35 * edge) * (vBase + vSunLit * shadow) + vSpec * shadow;
+#else
+  vec3 lit = (1.0 - 0.35 * edge) * vBase;  // turned away from the sun: vSunLit and vSpec are zero
+#endif
   lit = mix(lit, uFogColor, vFog * 0.5);
   fragColor = vec4(encodeSrgb(lit), 1.0);
 }
