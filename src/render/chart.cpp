@@ -126,7 +126,13 @@ ChartGeometry drawChart(Canvas& canvas, TextRenderer& text, int x0, int y0, int 
     if (hi <= lo) hi = lo + 1.0;
     const double step = niceStep(hi - lo, style.compact ? 3 : 6);
     if (!std::isfinite(spec.yMin)) lo = std::floor(lo / step + 1e-9) * step;
-    if (!std::isfinite(spec.yMax)) hi = std::ceil(hi / step - 1e-9) * step;
+    if (!std::isfinite(spec.yMax)) {
+      const double top = hi;
+      hi = std::ceil(hi / step - 1e-9) * step;
+      // A series at the top of the data (a fixed run's iterations at I_max) would lie on the plot's
+      // frame and vanish into it: leave it some headroom.
+      if (hi - top < 0.04 * (hi - lo)) hi += 0.08 * (hi - lo);
+    }
     if (hi <= lo) hi = lo + step;
     g.yLo = lo, g.yHi = hi;
     for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + step * 1e-6; v += step)
