@@ -71,6 +71,7 @@ bool prepareLink(const Contact& contact, const ContactConstraint& c, ChainLink& 
   for (int r = 0; r < 3; ++r)
     for (int q = 0; q < 3; ++q) {
       link.next[r][q] = 0.0;
+      link.nextF[r][q] = 0.0f;
       if (r >= link.rank || q >= link.rank) {
         link.diag[r][q] = r == q ? 1.0 : 0.0;  // an unused row: μ_r = 0
         continue;
@@ -95,6 +96,7 @@ void coupleLinks(const ContactConstraint& cp, int sideP, const ContactConstraint
     for (int q = 0; q < c.rank; ++q) {
       const Vec3& invAng = sideC == 1 ? c.invAngB[q] : c.invAngA[q];
       p.next[r][q] = sign * (double(p.lin[r]) * double(c.lin[q]) * invMass * normals + double(ang.dot(invAng)));
+      p.nextF[r][q] = float(p.next[r][q]);
     }
   }
   p.coupledToNext = true;
@@ -133,6 +135,11 @@ bool factorChain(ChainLink* links, uint32_t n) {
       for (uint32_t i = 0; i < n; ++i) links[i].factoredActive = !links[i].active;  // nothing valid kept
       return false;
     }
+    for (int r = 0; r < 3; ++r)
+      for (int q = 0; q < 3; ++q) {
+        link.pivotInverseF[r][q] = float(link.pivotInverse[r][q]);
+        link.lowerF[r][q] = float(link.lower[r][q]);
+      }
   }
   return true;
 }
@@ -145,23 +152,23 @@ void substituteChain(ChainLink* links, uint32_t n) {
     for (int r = 0; r < 3; ++r) link.mu[r] = link.rhs[r];
     if (j > 0 && links[j - 1].active && links[j - 1].coupledToNext)
       for (int r = 0; r < 3; ++r)
-        for (int t = 0; t < 3; ++t) link.mu[r] -= link.lower[r][t] * links[j - 1].mu[t];
+        for (int t = 0; t < 3; ++t) link.mu[r] -= link.lowerF[r][t] * links[j - 1].mu[t];
   }
   for (uint32_t j = n; j-- > 0;) {
     ChainLink& link = links[j];
     if (!link.active) continue;
-    double t[3] = {link.mu[0], link.mu[1], link.mu[2]};
+    float t[3] = {link.mu[0], link.mu[1], link.mu[2]};
     if (j + 1 < n && link.coupledToNext && links[j + 1].active)
       for (int r = 0; r < 3; ++r)
-        for (int q = 0; q < 3; ++q) t[r] -= link.next[r][q] * links[j + 1].mu[q];
+        for (int q = 0; q < 3; ++q) t[r] -= link.nextF[r][q] * links[j + 1].mu[q];
     for (int r = 0; r < 3; ++r)
-      link.mu[r] = link.pivotInverse[r][0] * t[0] + link.pivotInverse[r][1] * t[1] + link.pivotInverse[r][2] * t[2];
+      link.mu[r] = link.pivotInverseF[r][0] * t[0] + link.pivotInverseF[r][1] * t[1] + link.pivotInverseF[r][2] * t[2];
   }
 }
 
 // Impulse change of point i of a link from its μ.
 inline float pointChange(const ChainLink& link, int i, float omega) {
-  return omega * float(link.basis[i][0] * link.mu[0] + link.basis[i][1] * link.mu[1] + link.basis[i][2] * link.mu[2]);
+  return omega * (link.basis[i][0] * link.mu[0] + link.basis[i][1] * link.mu[1] + link.basis[i][2] * link.mu[2]);
 }
 
 // J v + b of a normal row at the given body velocities: < 0 where the row is violated.
@@ -177,10 +184,10 @@ void computeRhs(const BodyStore& bodies, const ContactConstraint* cs, ChainLink*
     if (!link.active) continue;
     const ContactConstraint& c = cs[j];
     const Vec3 &va = bodies.v[c.a], &wa = bodies.w[c.a], &vb = bodies.v[c.b], &wb = bodies.w[c.b];
-    double rhs[3] = {0.0, 0.0, 0.0};
+    float rhs[3] = {0.0f, 0.0f, 0.0f};
     for (int i = 0; i < c.count; ++i) {
       const float g = rowGap(c.points[i], va, wa, vb, wb, useBias);
-      for (int r = 0; r < 3; ++r) rhs[r] -= double(link.basis[i][r]) * g;
+      for (int r = 0; r < 3; ++r) rhs[r] -= link.basis[i][r] * g;
     }
     for (int r = 0; r < 3; ++r) link.rhs[r] = rhs[r];
   }

@@ -42,7 +42,10 @@ struct ChainLink {
   bool factoredActive;                      ///< `active` when the factors below were made
   double pivotInverse[3][3];                ///< inverse of the eliminated diagonal block
   double lower[3][3];                       ///< nextᵀ of the previous link times its pivotInverse
-  double rhs[3], mu[3];
+  // The factors in float for the substitutions, which run every round of every sweep; they are
+  // made in double, where the elimination's cancellations happen.
+  float nextF[3][3], pivotInverseF[3][3], lowerF[3][3];
+  float rhs[3], mu[3];
 };
 
 /// Builds the chain of island contacts `cs[0, n)` (in solve order) into `links` when they form one:
