@@ -9,13 +9,17 @@ namespace haif {
 namespace {
 
 constexpr uint32_t kUnmarked = 0xffffffffu;
-/// Solves per sweep: the first with the links that push or touch, then again after letting go of
-/// links that came out pulling, holding back links with a lifting corner, or taking in links the
-/// solve made touch.
+/// Solves per sweep: the first with the links that touch, then again after letting go of links or
+/// points that came out pulling, or taking in links the solve made touch.
 constexpr int kChainRounds = 8;
 /// A row closing slower than this (m/s) counts as touching: a resting contact that pushes nothing yet
 /// (a cold one under a landing) takes part from the first solve instead of joining a round later.
 constexpr float kTouchingGap = 1e-3f;
+/// A point let go of rejoins only when it closes faster than this (m/s): a lifted corner that merely
+/// touches would otherwise be let go and taken back in turn, round after round.
+constexpr float kRejoinGap = 1e-4f;
+/// Impulses this far below 0, relative to the link's mean, count as 0 (float noise of the solve).
+constexpr float kPullTolerance = 1e-4f;
 
 // Inverse of a symmetric positive definite 3x3 block by cofactors; false when it is (nearly) singular.
 bool invertPivot(const double a[3][3], double out[3][3]) {
@@ -38,15 +42,10 @@ bool invertPivot(const double a[3][3], double out[3][3]) {
   return true;
 }
 
-// The virtual rows of one manifold and their diagonal block; false when its normal rows have
-// different normals (a mesh contact), which the reduction does not cover.
-bool prepareLink(const Contact& contact, const ContactConstraint& c, ChainLink& link) {
-  if (c.count == 0 || (c.count > 1 && !c.blockExact)) return false;
-  Vec3 centre = Vec3::Zero();
-  for (int i = 0; i < c.count; ++i) centre += contact.manifold.points[i].position;
-  centre /= float(c.count);
+// The virtual rows of a link over its points in link.points, and their diagonal block.
+void buildRows(const ContactConstraint& c, ChainLink& link) {
   double B[kMaxManifoldPoints][3];
-  link.rank = manifoldBasis(contact.manifold, centre, c.tangent1, c.tangent2, B);
+  link.rank = pointBasis(link.coords, c.count, link.points, B);
   const double mSum = double(c.invMassA) + double(c.invMassB);
   for (int r = 0; r < 3; ++r) {
     double lin = 0.0;
@@ -70,8 +69,6 @@ bool prepareLink(const Contact& contact, const ContactConstraint& c, ChainLink& 
   }
   for (int r = 0; r < 3; ++r)
     for (int q = 0; q < 3; ++q) {
-      link.next[r][q] = 0.0;
-      link.nextF[r][q] = 0.0f;
       if (r >= link.rank || q >= link.rank) {
         link.diag[r][q] = r == q ? 1.0 : 0.0;  // an unused row: μ_r = 0
         continue;
@@ -79,7 +76,25 @@ bool prepareLink(const Contact& contact, const ContactConstraint& c, ChainLink& 
       link.diag[r][q] = double(link.lin[r]) * double(link.lin[q]) * mSum + double(link.angA[r].dot(link.invAngA[q])) +
                         double(link.angB[r].dot(link.invAngB[q]));
     }
+}
+
+// A link's rows over all its points; false when its normal rows have different normals (a mesh
+// contact), which the reduction does not cover.
+bool prepareLink(const Contact& contact, const ContactConstraint& c, ChainLink& link) {
+  if (c.count == 0 || (c.count > 1 && !c.blockExact)) return false;
+  Vec3 centre = Vec3::Zero();
+  for (int i = 0; i < c.count; ++i) centre += contact.manifold.points[i].position;
+  centre /= float(c.count);
+  planarCoords(contact.manifold, centre, c.tangent1, c.tangent2, link.coords);
+  link.points = (1u << c.count) - 1u;
+  buildRows(c, link);
+  for (int r = 0; r < 3; ++r)
+    for (int q = 0; q < 3; ++q) {
+      link.next[r][q] = 0.0;
+      link.nextF[r][q] = 0.0f;
+    }
   link.coupledToNext = false;
+  link.sideToNext = link.sideFromPrev = -1;
   link.active = link.factoredActive = false;
   return true;
 }
@@ -91,6 +106,11 @@ void coupleLinks(const ContactConstraint& cp, int sideP, const ContactConstraint
   const double sign = (sideP == 1 ? 1.0 : -1.0) * (sideC == 1 ? 1.0 : -1.0);
   const double invMass = sideP == 1 ? cp.invMassB : cp.invMassA;
   const double normals = double(cp.points[0].normal.dot(cc.points[0].normal));
+  for (int r = 0; r < 3; ++r)
+    for (int q = 0; q < 3; ++q) {
+      p.next[r][q] = 0.0;
+      p.nextF[r][q] = 0.0f;
+    }
   for (int r = 0; r < p.rank; ++r) {
     const Vec3& ang = sideP == 1 ? p.angB[r] : p.angA[r];
     for (int q = 0; q < c.rank; ++q) {
@@ -100,12 +120,21 @@ void coupleLinks(const ContactConstraint& cp, int sideP, const ContactConstraint
     }
   }
   p.coupledToNext = true;
+  p.sideToNext = int8_t(sideP);
+}
+
+// After link j's rows changed: its coupling blocks with both neighbours.
+void recouple(const ContactConstraint* cs, ChainLink* links, uint32_t n, uint32_t j) {
+  if (j > 0 && links[j - 1].coupledToNext)
+    coupleLinks(cs[j - 1], links[j - 1].sideToNext, cs[j], links[j].sideFromPrev, links[j - 1], links[j]);
+  if (j + 1 < n && links[j].coupledToNext)
+    coupleLinks(cs[j], links[j].sideToNext, cs[j + 1], links[j + 1].sideFromPrev, links[j], links[j + 1]);
 }
 
 // Block elimination down the chain for the links marked active (inactive links cut it in pieces).
 // Reuses the factors while the active links are those they were made for.
-bool factorChain(ChainLink* links, uint32_t n) {
-  bool same = true;
+bool factorChain(ChainLink* links, uint32_t n, bool rowsChanged) {
+  bool same = !rowsChanged;
   for (uint32_t j = 0; j < n && same; ++j) same = links[j].active == links[j].factoredActive;
   if (same) return true;
   for (uint32_t j = 0; j < n; ++j) {
@@ -218,6 +247,7 @@ bool prepareChain(const Contact* contacts, const ContactConstraint* cs, uint32_t
       if (j == 0 || m != 2 * (j - 1) || links[j - 1].coupledToNext) return false;  // not a chain
       const ContactConstraint& prev = cs[j - 1];
       coupleLinks(prev, prev.b == body ? 1 : 0, c, side, links[j - 1], links[j]);
+      links[j].sideFromPrev = int8_t(side);
       mark[body] = 2 * j + 1;
     }
   }
@@ -271,6 +301,16 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
     return false;
   };
 
+  // A link that let go of lifted points in the last sweep starts again from all of them.
+  bool rowsChanged = false;
+  for (uint32_t j = 0; j < n; ++j) {
+    const unsigned all = (1u << cs[j].count) - 1u;
+    if (links[j].points == all) continue;
+    links[j].points = all;
+    buildRows(cs[j], links[j]);
+    recouple(cs, links, n, j);
+    rowsChanged = true;
+  }
   for (uint32_t j = 0; j < n; ++j) {
     ContactConstraint& c = cs[j];
     Vec3 va, wa, vb, wb;
@@ -281,7 +321,6 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
     // Links take part that touch; more join when the solve makes them touch. A link that still
     // pushes but clearly separates (a box that was landing and now rises, a speculative contact
     // that started from a weight estimate) lets go first.
-    links[j].held = false;
     links[j].active = touches(c);
     if (!links[j].active) release(c);
   }
@@ -289,50 +328,86 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
   bool solved = false;
   for (int round = 0; round < kChainRounds && !solved; ++round) {
     computeRhs(bodies, cs, links, n, useBias);
-    if (!factorChain(links, n)) break;
+    if (!factorChain(links, n, rowsChanged)) break;
+    rowsChanged = false;
     substituteChain(links, n);
     bool pulling = false;
     for (uint32_t j = 0; j < n; ++j) {
       ChainLink& link = links[j];
       if (!link.active) continue;
       ContactConstraint& c = cs[j];
-      float total = 0.0f, lowest = 0.0f;
+      float total = 0.0f, size = 0.0f, lowest = 0.0f;
       for (int i = 0; i < c.count; ++i) {
         const float next = c.points[i].normalImpulse + pointChange(link, i, omega);
         lowest = std::min(lowest, next);
         total += next;
+        size += std::fabs(next);
       }
-      if (lowest >= 0.0f) continue;
+      link.slack = kPullTolerance * size / float(c.count);
+      if (lowest >= -link.slack) continue;
       pulling = true;
-      link.active = false;
       if (total >= 0.0f) {
-        // A corner lifts (a tilt): this link keeps its impulses through the chain solve and gets
-        // the manifold's projected passes after it.
-        link.held = true;
-        continue;
+        // A corner lifts (a tilt): the points that would pull let go, and the link is solved
+        // again on the basis of the others.
+        float applied[kMaxManifoldPoints] = {};
+        for (int i = 0; i < c.count; ++i)
+          if (c.points[i].normalImpulse + pointChange(link, i, omega) < -link.slack) {
+            applied[i] = -c.points[i].normalImpulse;
+            link.points &= ~(1u << i);
+          }
+        commit(c, applied);
+        if (link.points != 0) {
+          buildRows(c, link);
+          recouple(cs, links, n, j);
+          rowsChanged = true;
+          continue;
+        }
+      } else {
+        // The whole contact wants to separate: let it go (λ = 0, applied now, so the next round
+        // solves the others against it). If that was wrong, it touches again and rejoins below.
+        release(c);
       }
-      // The whole contact wants to separate: let it go (λ = 0, applied now, so the next round
-      // solves the others against it). If that was wrong, it touches again and rejoins below.
-      release(c);
+      link.active = false;
     }
     if (pulling) continue;
     for (uint32_t j = 0; j < n; ++j) {
       if (!links[j].active) continue;
       float applied[kMaxManifoldPoints] = {};
-      for (int i = 0; i < cs[j].count; ++i) applied[i] = pointChange(links[j], i, omega);
+      for (int i = 0; i < cs[j].count; ++i) {
+        const float old = cs[j].points[i].normalImpulse;
+        applied[i] = std::max(0.0f, old + pointChange(links[j], i, omega)) - old;
+      }
       commit(cs[j], applied);
     }
-    // Links left out that the solve now pushes into join, and the chain is solved again from here.
+    // Links left out that the solve now pushes into join, as do points a link let go of, and the
+    // chain is solved again from here.
     solved = true;
-    for (uint32_t j = 0; j < n; ++j)
-      if (!links[j].active && !links[j].held && touches(cs[j])) {
-        links[j].active = true;
-        solved = false;
+    for (uint32_t j = 0; j < n; ++j) {
+      ChainLink& link = links[j];
+      const ContactConstraint& c = cs[j];
+      if (!link.active) {
+        if (touches(c)) {
+          link.active = true;
+          solved = false;
+        }
+        continue;
       }
+      const unsigned all = (1u << c.count) - 1u;
+      if (link.points == all) continue;
+      const unsigned before = link.points;
+      const Vec3 &va = bodies.v[c.a], &wa = bodies.w[c.a], &vb = bodies.v[c.b], &wb = bodies.w[c.b];
+      for (int i = 0; i < c.count; ++i)
+        if (!(link.points & (1u << i)) && rowGap(c.points[i], va, wa, vb, wb, useBias) < -kRejoinGap)
+          link.points |= 1u << i;
+      if (link.points == before) continue;
+      buildRows(c, link);
+      recouple(cs, links, n, j);
+      rowsChanged = true;
+      solved = false;
+    }
   }
-  // Held links, or all of them when the rounds did not settle, get the manifold's own passes.
-  for (uint32_t j = 0; j < n; ++j) {
-    if (solved && !links[j].held) continue;
+  // When the rounds did not settle, the manifolds' own passes.
+  for (uint32_t j = 0; j < n && !solved; ++j) {
     ContactConstraint& c = cs[j];
     float before[kMaxManifoldPoints];
     for (int i = 0; i < kMaxManifoldPoints; ++i) before[i] = c.delta[i];

@@ -13,9 +13,10 @@
 // first. The result is kept when every point of every link still pushes (λ ≥ 0), the way a single
 // manifold's exact block is kept. A link whose total comes out pulling is let go (λ = 0) and the rest
 // solved again; links the result makes touch join and the chain is solved again from there (a
-// landing reaching down a resting stack). A link with a lifting corner (a tilt) sits the chain solve
-// out and gets its manifold's projected passes after it. Friction rows are swept as usual before the
-// chain solve.
+// landing reaching down a resting stack). A link with a lifting corner (a tilt) lets go of the points that
+// pull and is solved on the basis of the others (an edge spans rank 2, a corner rank 1). If the
+// rounds do not settle, the sweep solves the normal rows manifold by manifold as usual. Friction rows
+// are swept as usual before the chain solve.
 #pragma once
 
 #include "core/body_store.h"
@@ -29,6 +30,8 @@ namespace haif {
 /// Per constraint of a chain: its virtual rows and its part of the factorisation.
 struct ChainLink {
   int rank;                                 ///< virtual rows used (1..3); rows from rank on are zero
+  unsigned points;                          ///< bit i: point i is in the basis (a lifted one is not)
+  double coords[kMaxManifoldPoints][2];     ///< the points' in-plane coordinates, for rebuilding B
   float basis[kMaxManifoldPoints][3];       ///< B: weight of point i in virtual row r
   float lin[3];                             ///< Σ_i B[i][r]: the row's force along the normal
   Vec3 angA[3], angB[3];                    ///< Σ_i B[i][r] (r × n) on body A, body B
@@ -36,9 +39,9 @@ struct ChainLink {
   double diag[3][3];                        ///< R_j M⁻¹ R_jᵀ
   double next[3][3];                        ///< R_j M⁻¹ R_{j+1}ᵀ through the body they share (0: none)
   bool coupledToNext;
+  int8_t sideToNext, sideFromPrev;          ///< the shared body: 1 body B, 0 body A of this link
   // Per sweep.
   bool active;                              ///< takes part in the solve
-  bool held;                                ///< left to the manifold's passes: a corner lifts
   bool factoredActive;                      ///< `active` when the factors below were made
   double pivotInverse[3][3];                ///< inverse of the eliminated diagonal block
   double lower[3][3];                       ///< nextᵀ of the previous link times its pivotInverse
@@ -46,6 +49,7 @@ struct ChainLink {
   // made in double, where the elimination's cancellations happen.
   float nextF[3][3], pivotInverseF[3][3], lowerF[3][3];
   float rhs[3], mu[3];
+  float slack;                              ///< how far below 0 an impulse of this round counts as 0
 };
 
 /// Builds the chain of island contacts `cs[0, n)` (in solve order) into `links` when they form one:

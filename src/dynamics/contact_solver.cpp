@@ -5,19 +5,28 @@
 
 namespace haif {
 
-int manifoldBasis(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
-                  double B[kMaxManifoldPoints][3]) {
-  const int m = mf.count;
+int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned mask, double B[kMaxManifoldPoints][3]) {
   for (int i = 0; i < kMaxManifoldPoints; ++i) B[i][0] = B[i][1] = B[i][2] = 0.0;
-  if (m < 1) return 0;
-  // In-plane coordinates of the points. G does not depend on which basis of the affine functions
-  // B holds, so B = [1, s, t] serves; collinear points span only [1, the coordinate along them].
+  // The span of [1, s, t] does not depend on where (s, t) are measured from, but the rank test does:
+  // it takes the spread about the points' mean (the coordinates of a whole manifold already are).
+  const unsigned all = (1u << count) - 1u;
+  double ms = 0.0, mt = 0.0;
+  int m = 0;
+  for (int i = 0; i < count; ++i)
+    if (mask & (1u << i)) {
+      ms += coords[i][0];
+      mt += coords[i][1];
+      ++m;
+    }
+  if (m == 0) return 0;
+  if ((mask & all) == all) ms = mt = 0.0;
+  else ms /= m, mt /= m;
   double css = 0.0, ctt = 0.0, cst = 0.0;
-  for (int i = 0; i < m; ++i) {
-    const Vec3 d = mf.points[i].position - centre;
+  for (int i = 0; i < count; ++i) {
+    if (!(mask & (1u << i))) continue;
     B[i][0] = 1.0;
-    B[i][1] = d.dot(t1);
-    B[i][2] = d.dot(t2);
+    B[i][1] = coords[i][0] - ms;
+    B[i][2] = coords[i][1] - mt;
     css += B[i][1] * B[i][1];
     ctt += B[i][2] * B[i][2];
     cst += B[i][1] * B[i][2];
@@ -27,10 +36,30 @@ int manifoldBasis(const Manifold& mf, const Vec3& centre, const Vec3& t1, const 
   const bool collinear = !single && css * ctt - cst * cst <= 1e-4 * spread * spread;
   const int k = single ? 1 : m >= 3 && !collinear ? 3 : 2;
   if (k == 2 && ctt > css)
-    for (int i = 0; i < m; ++i) B[i][1] = B[i][2];
-  for (int i = 0; i < m; ++i)
+    for (int i = 0; i < count; ++i) B[i][1] = B[i][2];
+  for (int i = 0; i < count; ++i)
     for (int a = k; a < 3; ++a) B[i][a] = 0.0;
   return k;
+}
+
+void planarCoords(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
+                  double coords[kMaxManifoldPoints][2]) {
+  for (int i = 0; i < kMaxManifoldPoints; ++i) {
+    coords[i][0] = coords[i][1] = 0.0;
+    if (i >= mf.count) continue;
+    const Vec3 d = mf.points[i].position - centre;
+    coords[i][0] = d.dot(t1);
+    coords[i][1] = d.dot(t2);
+  }
+}
+
+int manifoldBasis(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
+                  double B[kMaxManifoldPoints][3]) {
+  // In-plane coordinates of the points. G does not depend on which basis of the affine functions
+  // B holds, so B = [1, s, t] serves; collinear points span only [1, the coordinate along them].
+  double coords[kMaxManifoldPoints][2];
+  planarCoords(mf, centre, t1, t2, coords);
+  return pointBasis(coords, mf.count, (1u << mf.count) - 1u, B);
 }
 
 namespace {

@@ -98,6 +98,12 @@ void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n);
 /// for collinear points, 1 for a single place); columns from k on are zero.
 int manifoldBasis(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
                   double B[kMaxManifoldPoints][3]);
+/// The points' in-plane coordinates (s, t) that manifoldBasis uses.
+void planarCoords(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
+                  double coords[kMaxManifoldPoints][2]);
+/// The basis of the points in `mask` (bit i: point i) of `count` points at `coords`; rows of the
+/// other points are zero. Returns its rank.
+int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned mask, double B[kMaxManifoldPoints][3]);
 
 /// b of a normal row: with position correction in a main sweep (`useBias`), the relax bias or a
 /// bounce in a relax sweep.

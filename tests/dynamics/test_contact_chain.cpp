@@ -153,25 +153,28 @@ TEST(ContactChain, LetsGoOfAContactThatSeparates) {
   EXPECT_NEAR(s.bodies.v[b1].y(), 0.0f, 1e-4f);  // stopped by the ground
 }
 
-TEST(ContactChain, TiltedLandingIsNoWorseThanSweeps) {
-  // The top box lands spinning about a horizontal axis: one edge of every contact lifts, so each
-  // link sits the chain solve out and gets its manifold's passes. No point may pull, and the sweep
-  // must converge at least as fast as the plain one.
-  auto land = [](bool chain) {
-    Pile s = column(4, -1.0f);
-    s.bodies.w[4] = Vec3(3.0f, 0.0f, 0.0f);
-    std::vector<ChainLink> links;
-    EXPECT_TRUE(s.prepare(links));
-    float residual = 0.0f;
-    for (int sweep = 0; sweep < 20; ++sweep)
-      residual = chain ? solveChainIteration(s.bodies, s.rows.data(), links.data(), uint32_t(links.size()), 1.0f, true)
-                             .residual
-                       : solveIteration(s.bodies, s.rows.data(), s.rows.size(), 1.0f, true).residual;
-    for (const ContactConstraint& c : s.rows)
-      for (int i = 0; i < c.count; ++i) EXPECT_GE(c.points[i].normalImpulse, 0.0f);
-    return residual;
-  };
-  EXPECT_LE(land(true), 1.01f * land(false));
+TEST(ContactChain, TiltedLandingSettlesOnAnEdgeInOneSweep) {
+  // The top box lands spinning about a horizontal axis: one edge of every contact lifts. Those
+  // points let go and the links are solved on the basis of the edge that stays (rank 2).
+  Pile s = column(4, -1.0f);
+  s.bodies.w[4] = Vec3(3.0f, 0.0f, 0.0f);
+  std::vector<ChainLink> links;
+  ASSERT_TRUE(s.prepare(links));
+  solveChainIteration(s.bodies, s.rows.data(), links.data(), uint32_t(links.size()), 1.0f, true);
+  s.expectComplementary();
+  int lifted = 0;
+  for (const ContactConstraint& c : s.rows)
+    for (int i = 0; i < c.count; ++i) lifted += c.points[i].normalImpulse < 1e-5f;
+  EXPECT_EQ(lifted, 8) << "two points of each of the four contacts carry nothing";
+  // Where 20 plain sweeps still leave rows approaching.
+  Pile p = column(4, -1.0f);
+  p.bodies.w[4] = Vec3(3.0f, 0.0f, 0.0f);
+  ASSERT_TRUE(p.prepare(links));
+  float worst = 0.0f;
+  for (int sweep = 0; sweep < 20; ++sweep) solveIteration(p.bodies, p.rows.data(), p.rows.size(), 1.0f, true);
+  for (const ContactConstraint& c : p.rows)
+    for (int i = 0; i < c.count; ++i) worst = std::min(worst, p.gap(c, i));
+  EXPECT_LT(worst, -1e-3f);
 }
 
 // A 10-box column dropped onto itself through 1 cm gaps, as in stacks_N.
