@@ -500,8 +500,10 @@ void World::solveIslands(int iterations) {
       const SweepResult sweep = sweepIsland(k, true);
       residual = sweep.residual;
       ++it;
-      // Converged islands stop: precision nobody can see is not paid for.
-      if (tol > 0.0f && it >= iMin && residual < tol) break;
+      // Converged islands stop: precision nobody can see is not paid for. A chain stops as soon as
+      // a sweep changes nothing: its sweeps solve it exactly, so I_min's guard against a sweep that
+      // only looks converged is not needed there.
+      if (tol > 0.0f && (it >= iMin || isChain_[k]) && residual < tol) break;
       if (!cg || it == iterations) continue;  // the main sweeps end on a sweep, not a momentum step
       if (residual < kMomentumFloor) {
         lastChange = 0.0;  // converged: no momentum to carry; a later sweep starts a new direction
