@@ -94,7 +94,6 @@ bool prepareLink(const Contact& contact, const ContactConstraint& c, ChainLink& 
       link.nextF[r][q] = 0.0f;
     }
   link.coupledToNext = false;
-  link.sideToNext = link.sideFromPrev = -1;
   link.active = link.factoredActive = false;
   return true;
 }
@@ -230,11 +229,12 @@ bool prepareChain(const Contact* contacts, const ContactConstraint* cs, uint32_t
   for (uint32_t j = 0; j < n; ++j) {
     if (cs[j].dynA) mark[cs[j].a] = kUnmarked;
     if (cs[j].dynB) mark[cs[j].b] = kUnmarked;
+    links[j].sideToNext = links[j].sideFromPrev = -1;
   }
+  // The shape first, which most islands that are not chains fail within a few links: mark is 2j
+  // when a body was first met at link j, odd once it was met at a second, consecutive link.
   for (uint32_t j = 0; j < n; ++j) {
     const ContactConstraint& c = cs[j];
-    if (!prepareLink(contacts[c.contact], c, links[j])) return false;
-    // mark: 2j when a body was first met at link j, odd once it was met at a second, consecutive link.
     for (int side = 0; side < 2; ++side) {
       const bool dyn = side == 0 ? c.dynA : c.dynB;
       if (!dyn) continue;
@@ -244,13 +244,17 @@ bool prepareChain(const Contact* contacts, const ContactConstraint* cs, uint32_t
         mark[body] = 2 * j;
         continue;
       }
-      if (j == 0 || m != 2 * (j - 1) || links[j - 1].coupledToNext) return false;  // not a chain
-      const ContactConstraint& prev = cs[j - 1];
-      coupleLinks(prev, prev.b == body ? 1 : 0, c, side, links[j - 1], links[j]);
+      if (j == 0 || m != 2 * (j - 1) || links[j - 1].sideToNext >= 0) return false;  // not a chain
+      links[j - 1].sideToNext = int8_t(cs[j - 1].b == body ? 1 : 0);
       links[j].sideFromPrev = int8_t(side);
       mark[body] = 2 * j + 1;
     }
   }
+  for (uint32_t j = 0; j < n; ++j)
+    if (!prepareLink(contacts[cs[j].contact], cs[j], links[j])) return false;
+  for (uint32_t j = 0; j + 1 < n; ++j)
+    if (links[j].sideToNext >= 0)
+      coupleLinks(cs[j], links[j].sideToNext, cs[j + 1], links[j + 1].sideFromPrev, links[j], links[j + 1]);
   return true;
 }
 
