@@ -267,14 +267,7 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
     wb = bodies.w[c.b];
   };
   auto store = [&](const ContactConstraint& c, const Vec3& va, const Vec3& wa, const Vec3& vb, const Vec3& wb) {
-    if (c.dynA) {
-      bodies.v[c.a] = va;
-      bodies.w[c.a] = wa;
-    }
-    if (c.dynB) {
-      bodies.v[c.b] = vb;
-      bodies.w[c.b] = wb;
-    }
+    storeVelocities(bodies, c, va, wa, vb, wb);
   };
   // Adds `applied` to a link's impulses and velocities; c.delta sums what the sweep changed.
   auto commit = [&](ContactConstraint& c, const float* applied) {

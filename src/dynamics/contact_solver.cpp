@@ -434,14 +434,7 @@ SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, f
     frictionRows(c, va, wa, vb, wb, omega);
     residual = std::max(residual, normalRows(c, va, wa, vb, wb, omega, useBias));
     change += rowsChange(c);
-    if (c.dynA) {
-      bodies.v[c.a] = va;
-      bodies.w[c.a] = wa;
-    }
-    if (c.dynB) {
-      bodies.v[c.b] = vb;
-      bodies.w[c.b] = wb;
-    }
+    storeVelocities(bodies, c, va, wa, vb, wb);
   }
   return {residual, change};
 }

@@ -111,6 +111,20 @@ inline float rowBias(const ContactConstraint::Point& p, bool useBias) {
   return useBias ? p.bias : (p.restitutionBias < 0.0f && p.normalImpulse > 0.0f ? p.restitutionBias : p.relaxBias);
 }
 
+/// Writes a manifold's body velocities back after solving its rows. Static and kinematic bodies are
+/// read (their velocity is given) but never written, so islands that share one solve concurrently.
+inline void storeVelocities(BodyStore& bodies, const ContactConstraint& c, const Vec3& va, const Vec3& wa,
+                            const Vec3& vb, const Vec3& wb) {
+  if (c.dynA) {
+    bodies.v[c.a] = va;
+    bodies.w[c.a] = wa;
+  }
+  if (c.dynB) {
+    bodies.v[c.b] = vb;
+    bodies.w[c.b] = wb;
+  }
+}
+
 // The parts of a sweep over one manifold, on its bodies' velocities (va, wa, vb, wb) held by the caller:
 /// Twist and tangent rows, bounded by the normal impulses of the previous sweep.
 void solveFrictionRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb, float omega);
