@@ -184,21 +184,13 @@ struct LandingRun {
 };
 
 LandingRun landColumn(int iterations, bool chain) {
-  WorldSettings ws;
-  ws.iterations = iterations;
-  ws.chainSolve = chain;
-  World w(ws);
-  test::addGround(w);
-  test::addColumn(w, 10, 0.0f, 0.0f, 1.01f);
-  w.setSolveErrorInterval(1);
   LandingRun r;
   const int steps = 60;
-  for (int s = 0; s < steps; ++s) {
-    w.step();
+  test::stepGappedColumn(iterations, chain, steps, [&](const World& w, int s) {
     r.meanError += w.lastStats().solveError / steps;
     r.maxError = std::max(r.maxError, w.lastStats().solveError);
     if (s >= 30) r.deepest = std::max(r.deepest, test::maxContactDepth(w));
-  }
+  });
   return r;
 }
 
@@ -211,7 +203,7 @@ TEST(ContactChain, ColumnLandsWithoutSolveErrorAtTwoIterations) {
 }
 
 TEST(ContactChain, SameStateForAnyThreadCount) {
-  auto run = [](int threads) {
+  test::expectSameStateForThreadCounts([](int threads) {
     WorldSettings ws;
     ws.threads = threads;
     ws.iterations = 4;
@@ -220,10 +212,7 @@ TEST(ContactChain, SameStateForAnyThreadCount) {
     for (int s = 0; s < 8; ++s) test::addColumn(w, 12, 3.0f * float(s), 0.0f, 1.01f);
     for (int s = 0; s < 120; ++s) w.step();
     return w.stateHash();
-  };
-  const uint64_t one = run(1);
-  EXPECT_EQ(run(2), one);
-  EXPECT_EQ(run(4), one);
+  });
 }
 
 }  // namespace

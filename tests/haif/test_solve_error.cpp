@@ -18,20 +18,12 @@ struct ErrorStats {
 // The stack is swept contact by contact (no exact chain solve, which settles it in one sweep), so
 // the error depends on the iteration count the way PGS makes it.
 ErrorStats stackError(int iterations, int steps) {
-  WorldSettings ws;
-  ws.iterations = iterations;
-  ws.chainSolve = false;
-  World w(ws);
-  test::addGround(w);
-  test::addColumn(w, 10, 0.0f, 0.0f, 1.01f);
-  w.setSolveErrorInterval(1);
   ErrorStats e;
   double sum = 0.0;
-  for (int s = 0; s < steps; ++s) {
-    w.step();
+  test::stepGappedColumn(iterations, false, steps, [&](const World& w, int s) {
     const double err = w.lastStats().solveError;
     EXPECT_FALSE(std::isnan(err)) << "step " << s << ": not measured with interval 1";
-    if (std::isnan(err)) continue;
+    if (std::isnan(err)) return;
     if (err < 0.0 || err > 1.0) {
       if (e.firstOutOfRange < 0) e.firstOutOfRange = s;
       ++e.outOfRange;
@@ -39,7 +31,7 @@ ErrorStats stackError(int iterations, int steps) {
     sum += err;
     e.max = std::max(e.max, err);
     ++e.samples;
-  }
+  });
   e.mean = e.samples ? sum / e.samples : 0.0;
   return e;
 }

@@ -48,6 +48,37 @@ inline std::vector<uint32_t> addColumn(World& w, int count, float x = 0.0f, floa
 }
 
 /// The 2D pyramid of DESIGN.md §6 (large_pyramid) with `base` boxes in the bottom row, centred on x = 0.
+/// Ground and a 10-box column with 1 cm gaps between the boxes, as in stacks_N: the boxes land on
+/// each other during the first steps.
+inline void addGappedColumn(World& w) {
+  addGround(w);
+  addColumn(w, 10, 0.0f, 0.0f, 1.01f);
+}
+
+/// Steps a gapped column `steps` times at a fixed iteration count, the solve error measured every
+/// step, calling f(world, step) after each.
+template <class F>
+void stepGappedColumn(int iterations, bool chainSolve, int steps, F&& f) {
+  WorldSettings ws;
+  ws.iterations = iterations;
+  ws.chainSolve = chainSolve;
+  World w(ws);
+  addGappedColumn(w);
+  w.setSolveErrorInterval(1);
+  for (int s = 0; s < steps; ++s) {
+    w.step();
+    f(w, s);
+  }
+}
+
+/// run(threads) returns a state hash; it must be the same on 1, 2 and 4 threads.
+template <class Run>
+void expectSameStateForThreadCounts(Run run) {
+  const uint64_t one = run(1);
+  EXPECT_EQ(run(2), one) << "2 threads";
+  EXPECT_EQ(run(4), one) << "4 threads";
+}
+
 inline void addPyramid2d(World& w, int base) {
   for (int i = 0; i < base; ++i)
     for (int j = i; j < base; ++j) addBox(w, Vec3(0.5f * float(i + 1) + float(j - i) - 0.5f * float(base), 0.5f + float(i), 0.0f));
