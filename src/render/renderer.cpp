@@ -495,7 +495,6 @@ struct Renderer::Impl {
     return true;
   }
 
-  // Sorts instances into draw groups (front to back inside each) and fills the staging buffer.
   // The camera stream: the faces of the dynamic boxes the camera may see, front to back.
   void buildCameraFaces(const FrameInput& f, const ViewSetup& view) {
     findOccludedBoxes(view, dynamicBoxes);
@@ -505,6 +504,7 @@ struct Renderer::Impl {
                                  hiddenMasks[k] | occludedFaces[k], view.eye, kSunDir);
   }
 
+  // Sorts instances into draw groups (front to back inside each) and fills the staging buffer.
   void buildInstances(const FrameInput& f, const ViewSetup& view) {
     const Vec3 eye = view.eye;
     staging.clear();
