@@ -93,15 +93,15 @@ bool prepareLink(const Contact& contact, const ContactConstraint& c, ChainLink& 
       link.next[r][q] = 0.0;
       link.nextF[r][q] = 0.0f;
     }
-  link.coupledToNext = false;
   link.active = link.factoredActive = false;
   return true;
 }
 
-// R_p M⁻¹ R_cᵀ through the one body the links share: `sideP` / `sideC` say whether it is body B (1)
-// or body A (0) of each; a row acts on body A with the opposite sign.
-void coupleLinks(const ContactConstraint& cp, int sideP, const ContactConstraint& cc, int sideC, ChainLink& p,
-                 const ChainLink& c) {
+// R_p M⁻¹ R_cᵀ through the one body link p shares with the next link c: p.sideToNext and
+// c.sideFromPrev say whether it is body B (1) or body A (0) of each; a row acts on body A with the
+// opposite sign.
+void coupleLinks(const ContactConstraint& cp, const ContactConstraint& cc, ChainLink& p, const ChainLink& c) {
+  const int sideP = p.sideToNext, sideC = c.sideFromPrev;
   const double sign = (sideP == 1 ? 1.0 : -1.0) * (sideC == 1 ? 1.0 : -1.0);
   const double invMass = sideP == 1 ? cp.invMassB : cp.invMassA;
   const double normals = double(cp.points[0].normal.dot(cc.points[0].normal));
@@ -118,16 +118,12 @@ void coupleLinks(const ContactConstraint& cp, int sideP, const ContactConstraint
       p.nextF[r][q] = float(p.next[r][q]);
     }
   }
-  p.coupledToNext = true;
-  p.sideToNext = int8_t(sideP);
 }
 
 // After link j's rows changed: its coupling blocks with both neighbours.
 void recouple(const ContactConstraint* cs, ChainLink* links, uint32_t n, uint32_t j) {
-  if (j > 0 && links[j - 1].coupledToNext)
-    coupleLinks(cs[j - 1], links[j - 1].sideToNext, cs[j], links[j].sideFromPrev, links[j - 1], links[j]);
-  if (j + 1 < n && links[j].coupledToNext)
-    coupleLinks(cs[j], links[j].sideToNext, cs[j + 1], links[j + 1].sideFromPrev, links[j], links[j + 1]);
+  if (j > 0 && links[j - 1].coupledToNext()) coupleLinks(cs[j - 1], cs[j], links[j - 1], links[j]);
+  if (j + 1 < n && links[j].coupledToNext()) coupleLinks(cs[j], cs[j + 1], links[j], links[j + 1]);
 }
 
 // Block elimination down the chain for the links marked active (inactive links cut it in pieces).
@@ -143,7 +139,7 @@ bool factorChain(ChainLink* links, uint32_t n, bool rowsChanged) {
     double pivot[3][3];
     for (int r = 0; r < 3; ++r)
       for (int q = 0; q < 3; ++q) pivot[r][q] = link.diag[r][q];
-    if (j > 0 && links[j - 1].active && links[j - 1].coupledToNext) {
+    if (j > 0 && links[j - 1].active && links[j - 1].coupledToNext()) {
       const ChainLink& prev = links[j - 1];
       // lower = Cᵀ P_prev⁻¹, pivot −= lower C, with C = prev.next.
       for (int q = 0; q < 3; ++q)
@@ -178,7 +174,7 @@ void substituteChain(ChainLink* links, uint32_t n) {
     ChainLink& link = links[j];
     if (!link.active) continue;
     for (int r = 0; r < 3; ++r) link.mu[r] = link.rhs[r];
-    if (j > 0 && links[j - 1].active && links[j - 1].coupledToNext)
+    if (j > 0 && links[j - 1].active && links[j - 1].coupledToNext())
       for (int r = 0; r < 3; ++r)
         for (int t = 0; t < 3; ++t) link.mu[r] -= link.lowerF[r][t] * links[j - 1].mu[t];
   }
@@ -186,7 +182,7 @@ void substituteChain(ChainLink* links, uint32_t n) {
     ChainLink& link = links[j];
     if (!link.active) continue;
     float t[3] = {link.mu[0], link.mu[1], link.mu[2]};
-    if (j + 1 < n && link.coupledToNext && links[j + 1].active)
+    if (j + 1 < n && link.coupledToNext() && links[j + 1].active)
       for (int r = 0; r < 3; ++r)
         for (int q = 0; q < 3; ++q) t[r] -= link.nextF[r][q] * links[j + 1].mu[q];
     for (int r = 0; r < 3; ++r)
@@ -244,7 +240,7 @@ bool prepareChain(const Contact* contacts, const ContactConstraint* cs, uint32_t
         mark[body] = 2 * j;
         continue;
       }
-      if (j == 0 || m != 2 * (j - 1) || links[j - 1].sideToNext >= 0) return false;  // not a chain
+      if (j == 0 || m != 2 * (j - 1) || links[j - 1].coupledToNext()) return false;  // not a chain
       links[j - 1].sideToNext = int8_t(cs[j - 1].b == body ? 1 : 0);
       links[j].sideFromPrev = int8_t(side);
       mark[body] = 2 * j + 1;
@@ -253,8 +249,7 @@ bool prepareChain(const Contact* contacts, const ContactConstraint* cs, uint32_t
   for (uint32_t j = 0; j < n; ++j)
     if (!prepareLink(contacts[cs[j].contact], cs[j], links[j])) return false;
   for (uint32_t j = 0; j + 1 < n; ++j)
-    if (links[j].sideToNext >= 0)
-      coupleLinks(cs[j], links[j].sideToNext, cs[j + 1], links[j + 1].sideFromPrev, links[j], links[j + 1]);
+    if (links[j].coupledToNext()) coupleLinks(cs[j], cs[j + 1], links[j], links[j + 1]);
   return true;
 }
 

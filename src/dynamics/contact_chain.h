@@ -38,8 +38,8 @@ struct ChainLink {
   Vec3 invAngA[3], invAngB[3];              ///< I⁻¹ times them
   double diag[3][3];                        ///< R_j M⁻¹ R_jᵀ
   double next[3][3];                        ///< R_j M⁻¹ R_{j+1}ᵀ through the body they share (0: none)
-  bool coupledToNext;
-  int8_t sideToNext, sideFromPrev;          ///< the shared body: 1 body B, 0 body A of this link
+  int8_t sideToNext, sideFromPrev;          ///< the shared body: 1 body B, 0 body A of this link; -1 none
+  bool coupledToNext() const { return sideToNext >= 0; }
   // Per sweep.
   bool active;                              ///< takes part in the solve
   bool factoredActive;                      ///< `active` when the factors below were made

@@ -91,8 +91,8 @@ TEST(ContactChain, AStackIsAChain) {
   std::vector<ChainLink> links;
   EXPECT_TRUE(s.prepare(links));
   for (const ChainLink& l : links) EXPECT_EQ(l.rank, 3);
-  for (size_t j = 0; j + 1 < links.size(); ++j) EXPECT_TRUE(links[j].coupledToNext) << "link " << j;
-  EXPECT_FALSE(links.back().coupledToNext);  // the ground contact: the ground is static
+  for (size_t j = 0; j + 1 < links.size(); ++j) EXPECT_TRUE(links[j].coupledToNext()) << "link " << j;
+  EXPECT_FALSE(links.back().coupledToNext());  // the ground contact: the ground is static
 }
 
 TEST(ContactChain, ABoxOnTwoBoxesIsNot) {
