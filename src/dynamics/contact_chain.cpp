@@ -21,27 +21,6 @@ constexpr float kRejoinGap = 1e-4f;
 /// Impulses this far below 0, relative to the link's mean, count as 0 (float noise of the solve).
 constexpr float kPullTolerance = 1e-4f;
 
-// Inverse of a symmetric positive definite 3x3 block by cofactors; false when it is (nearly) singular.
-bool invertPivot(const double a[3][3], double out[3][3]) {
-  const double c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1];
-  const double c01 = a[1][2] * a[2][0] - a[1][0] * a[2][2];
-  const double c02 = a[1][0] * a[2][1] - a[1][1] * a[2][0];
-  const double det = a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02;
-  const double scale = a[0][0] * a[1][1] * a[2][2];
-  if (!(a[0][0] > 0.0 && a[1][1] > 0.0 && a[2][2] > 0.0 && det > 1e-9 * scale)) return false;
-  const double inv = 1.0 / det;
-  out[0][0] = c00 * inv;
-  out[1][0] = c01 * inv;
-  out[2][0] = c02 * inv;
-  out[0][1] = (a[0][2] * a[2][1] - a[0][1] * a[2][2]) * inv;
-  out[1][1] = (a[0][0] * a[2][2] - a[0][2] * a[2][0]) * inv;
-  out[2][1] = (a[0][1] * a[2][0] - a[0][0] * a[2][1]) * inv;
-  out[0][2] = (a[0][1] * a[1][2] - a[0][2] * a[1][1]) * inv;
-  out[1][2] = (a[0][2] * a[1][0] - a[0][0] * a[1][2]) * inv;
-  out[2][2] = (a[0][0] * a[1][1] - a[0][1] * a[1][0]) * inv;
-  return true;
-}
-
 // The virtual rows of a link over its points in link.points, and their diagonal block.
 void buildRows(const ContactConstraint& c, ChainLink& link) {
   double B[kMaxManifoldPoints][3];
@@ -155,7 +134,7 @@ bool factorChain(ChainLink* links, uint32_t n, bool rowsChanged) {
           pivot[q][t] -= s;
         }
     }
-    if (!invertPivot(pivot, link.pivotInverse)) {
+    if (!invertSymmetric3(pivot, link.pivotInverse, 1e-9)) {
       for (uint32_t i = 0; i < n; ++i) links[i].factoredActive = !links[i].active;  // nothing valid kept
       return false;
     }

@@ -5,6 +5,22 @@
 
 namespace haif {
 
+bool invertSymmetric3(const double a[3][3], double out[3][3], double minDetRatio) {
+  const double c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1];
+  const double c01 = a[1][2] * a[2][0] - a[1][0] * a[2][2];
+  const double c02 = a[1][0] * a[2][1] - a[1][1] * a[2][0];
+  const double det = a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02;
+  if (!(a[0][0] > 0.0 && a[1][1] > 0.0 && a[2][2] > 0.0 && det > minDetRatio * a[0][0] * a[1][1] * a[2][2]))
+    return false;
+  out[0][0] = c00 / det;
+  out[1][0] = out[0][1] = c01 / det;
+  out[2][0] = out[0][2] = c02 / det;
+  out[1][1] = (a[0][0] * a[2][2] - a[0][2] * a[2][0]) / det;
+  out[2][1] = out[1][2] = (a[0][2] * a[1][0] - a[0][0] * a[1][2]) / det;
+  out[2][2] = (a[0][0] * a[1][1] - a[0][1] * a[1][0]) / det;
+  return true;
+}
+
 int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned mask, double B[kMaxManifoldPoints][3]) {
   for (int i = 0; i < kMaxManifoldPoints; ++i) B[i][0] = B[i][1] = B[i][2] = 0.0;
   // The span of [1, s, t] does not depend on where (s, t) are measured from, but the rank test does:
@@ -96,18 +112,8 @@ bool prepareBlockInverse(const Manifold& mf, const Vec3& centre, const Vec3& t1,
     inv[0][0] = A[1][1] / det;
     inv[1][1] = A[0][0] / det;
     inv[0][1] = inv[1][0] = -A[0][1] / det;
-  } else {
-    const double c00 = A[1][1] * A[2][2] - A[1][2] * A[2][1];
-    const double c01 = A[1][2] * A[2][0] - A[1][0] * A[2][2];
-    const double c02 = A[1][0] * A[2][1] - A[1][1] * A[2][0];
-    const double det = A[0][0] * c00 + A[0][1] * c01 + A[0][2] * c02;
-    if (!(det > 1e-6 * A[0][0] * A[1][1] * A[2][2])) return false;
-    inv[0][0] = c00 / det;
-    inv[1][0] = inv[0][1] = c01 / det;
-    inv[2][0] = inv[0][2] = c02 / det;
-    inv[1][1] = (A[0][0] * A[2][2] - A[0][2] * A[2][0]) / det;
-    inv[2][1] = inv[1][2] = (A[0][2] * A[1][0] - A[0][0] * A[1][2]) / det;
-    inv[2][2] = (A[0][0] * A[1][1] - A[0][1] * A[1][0]) / det;
+  } else if (!invertSymmetric3(A, inv, 1e-6)) {
+    return false;
   }
   double C[3][kMaxManifoldPoints] = {};  // A⁻¹ Bᵀ
   for (int a = 0; a < k; ++a)

@@ -93,6 +93,11 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
 /// Applies the accumulated (warm-start) impulses of the constraints to the body velocities.
 void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n);
 
+/// Inverse of a symmetric positive definite 3x3 block by cofactors. False when a diagonal entry is
+/// not positive or the determinant is below minDetRatio times the diagonal's product: a direction
+/// the bodies cannot respond in (nearly singular).
+bool invertSymmetric3(const double a[3][3], double out[3][3], double minDetRatio);
+
 /// In-plane basis of a manifold's points for its normal block: B[i] = [1, s_i, t_i], with (s, t) the
 /// point's coordinates along t1 and t2 from `centre`. Returns the rank k it spans (3 for a patch, 2
 /// for collinear points, 1 for a single place); columns from k on are zero.
