@@ -177,7 +177,7 @@ inline float pointChange(const ChainLink& link, int i, float omega) {
 // J v + b of a normal row at the given body velocities: < 0 where the row is violated.
 inline float rowGap(const ContactConstraint::Point& p, const Vec3& va, const Vec3& wa, const Vec3& vb, const Vec3& wb,
                     bool useBias) {
-  return p.normal.dot(vb - va) + p.rBxn.dot(wb) - p.rAxn.dot(wa) + rowBias(p, useBias);
+  return rowVelocity(p, va, wa, vb, wb) + rowBias(p, useBias);
 }
 
 // rhs = −Bᵀ (J v + b) of the active links at the bodies' current velocities.

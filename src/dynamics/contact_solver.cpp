@@ -289,10 +289,9 @@ template <int M>
 inline void solveNormalBlock(ContactConstraint& c, const Vec3& va, const Vec3& wa, const Vec3& vb, const Vec3& wb,
                              float omega, bool useBias, float* applied) {
   float vn[M], bias[M], lambda[M], start[M];
-  const Vec3 dv = vb - va;
   for (int i = 0; i < M; ++i) {
     const ContactConstraint::Point& p = c.points[i];
-    vn[i] = p.normal.dot(dv) + p.rBxn.dot(wb) - p.rAxn.dot(wa);
+    vn[i] = rowVelocity(p, va, wa, vb, wb);
     bias[i] = rowBias(p, useBias);
     lambda[i] = start[i] = p.normalImpulse;
   }

@@ -110,6 +110,12 @@ void planarCoords(const Manifold& mf, const Vec3& centre, const Vec3& t1, const 
 /// other points are zero. Returns its rank.
 int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned mask, double B[kMaxManifoldPoints][3]);
 
+/// J v of a normal row: the bodies' relative velocity along its normal at its point (< 0: approaching).
+inline float rowVelocity(const ContactConstraint::Point& p, const Vec3& va, const Vec3& wa, const Vec3& vb,
+                         const Vec3& wb) {
+  return p.normal.dot(vb - va) + p.rBxn.dot(wb) - p.rAxn.dot(wa);
+}
+
 /// b of a normal row: with position correction in a main sweep (`useBias`), the relax bias or a
 /// bounce in a relax sweep.
 inline float rowBias(const ContactConstraint::Point& p, bool useBias) {
