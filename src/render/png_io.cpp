@@ -1,8 +1,11 @@
 #include "render/png_io.h"
 
+#include "render/png_deflate.h"
+
 #include <png.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <csetjmp>
 #include <cstdio>
@@ -26,10 +29,17 @@ void onPngError(png_structp png, png_const_charp text) {
 
 void onPngWarning(png_structp, png_const_charp) {}
 
-// Frames are intermediate files (they go to a video encoder or a diff), so speed beats size:
-// zlib level 1 with no row filter writes ~5x faster than libpng's defaults at about the same size
-// for rendered frames. Opaque images are stored as RGB, a quarter less data to compress.
+// libpng writes the file (signature, header, chunks, checksums); the image data is compressed by
+// PngDeflater, about twice as fast as zlib's level 1 on rendered frames at ~15% more size (see
+// png_deflate.h). Frames are intermediate files (they go to a video encoder or a diff), so speed
+// beats size. Opaque images are stored as RGB, a quarter less data to compress.
 bool encodePng(FILE* file, int w, int h, const uint8_t* rgba, bool opaque, PngWriteState* state) {
+  // One deflater and output buffer per thread: a frame writer reuses them for every frame.
+  thread_local PngDeflater deflater;
+  thread_local std::vector<uint8_t> idat;
+  idat.clear();
+  deflater.compress(rgba, w, h, opaque ? 3 : 4, 4, idat);
+
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, state, onPngError, onPngWarning);
   if (!png) {
     std::snprintf(state->message, sizeof state->message, "out of memory");
@@ -45,13 +55,12 @@ bool encodePng(FILE* file, int w, int h, const uint8_t* rgba, bool opaque, PngWr
   png_set_IHDR(png, info, static_cast<png_uint_32>(w), static_cast<png_uint_32>(h), 8,
                opaque ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGB_ALPHA, PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_set_compression_level(png, 1);
-  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_NONE);
   png_write_info(png, info);
-  if (opaque) png_set_filler(png, 0, PNG_FILLER_AFTER);  // input rows keep their alpha byte: skip it
-  const size_t stride = static_cast<size_t>(w) * 4;
-  for (int y = 0; y < h; ++y) png_write_row(png, const_cast<png_bytep>(rgba + stride * static_cast<size_t>(y)));
-  png_write_end(png, info);
+  // The compressed rows as IDAT chunks of at most 1 MiB each (any split is valid), then the end.
+  constexpr size_t kChunk = size_t(1) << 20;
+  for (size_t at = 0; at < idat.size(); at += kChunk)
+    png_write_chunk(png, reinterpret_cast<png_const_bytep>("IDAT"), idat.data() + at, std::min(kChunk, idat.size() - at));
+  png_write_chunk(png, reinterpret_cast<png_const_bytep>("IEND"), nullptr, 0);
   png_destroy_write_struct(&png, &info);
   return true;
 }
