@@ -9,14 +9,14 @@
 // R_j = Bᵀ J_j couple only with the links that share one of its bodies, j − 1 and j + 1, so
 //   R_j M⁻¹ Σ_l R_lᵀ μ_l = −Bᵀ (J_j v + b_j)
 // is block tridiagonal with k × k blocks, factored by block Gaussian elimination down the chain.
-// The links solved are those that touch; a link that still pushes while it clearly separates lets go
-// first. The result is kept when every point of every link still pushes (λ ≥ 0), the way a single
-// manifold's exact block is kept. A link whose total comes out pulling is let go (λ = 0) and the rest
-// solved again; links the result makes touch join and the chain is solved again from there (a
-// landing reaching down a resting stack). A link with a lifting corner (a tilt) lets go of the points that
-// pull and is solved on the basis of the others (an edge spans rank 2, a corner rank 1). If the
-// rounds do not settle, the sweep solves the normal rows manifold by manifold as usual. Friction rows
-// are swept as usual before the chain solve.
+// The links solved are those that touch or still push; one that pushes while it separates is let
+// go only when the solution pulls on it. The result is kept when every point of every link still
+// pushes (λ ≥ 0), the way a single manifold's exact block is kept. A link whose total comes out
+// pulling is let go (λ = 0) and the rest solved again; links the result makes touch join and the
+// chain is solved again from there (a landing reaching down a resting stack). A link with a lifting
+// corner (a tilt) lets go of the points that pull and is solved on the basis of the others (an edge
+// spans rank 2, a corner rank 1). If the rounds do not settle, the sweep solves the normal rows
+// manifold by manifold as usual. Friction rows are swept as usual before the chain solve.
 #pragma once
 
 #include "core/body_store.h"
