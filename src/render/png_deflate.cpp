@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <type_traits>
 
 namespace haif::render {
 
@@ -31,9 +32,8 @@ struct LengthTable {
   LengthTable() {
     for (int c = 0; c < kLengthCodes; ++c) {
       const int last = c + 1 < kLengthCodes ? kLengthBase[c + 1] - 1 : kMaxMatch;
-      for (int len = kLengthBase[c]; len <= last && len <= kMaxMatch; ++len) code[len] = uint8_t(c);
+      for (int len = kLengthBase[c]; len <= last; ++len) code[len] = uint8_t(c);  // 258: a code of its own
     }
-    code[kMaxMatch] = kLengthCodes - 1;  // 258 has a code of its own, not 227 + 31
   }
 };
 const LengthTable kLengths;
@@ -191,20 +191,10 @@ inline uint32_t matchStarts(const uint8_t* p, size_t dist) {
 }
 
 // Rows of the image, each its filter byte (1: "sub") and each byte minus the same channel of the
-// pixel to its left. Templated on the common layouts so the inner loop has fixed sizes.
-template <int Channels, int Stride>
-void subFilter(const uint8_t* pixels, int width, int height, uint8_t* out) {
-  for (int y = 0; y < height; ++y) {
-    const uint8_t* src = pixels + size_t(y) * size_t(width) * Stride;
-    *out++ = 1;
-    for (int c = 0; c < Channels; ++c) out[c] = src[c];
-    out += Channels;
-    for (int x = 1; x < width; ++x, out += Channels, src += Stride)
-      for (int c = 0; c < Channels; ++c) out[c] = uint8_t(src[Stride + c] - src[c]);
-  }
-}
-
-void subFilter(const uint8_t* pixels, int width, int height, int channels, int stride, uint8_t* out) {
+// pixel to its left. The common layouts come as std::integral_constant, so their inner loops have
+// fixed sizes.
+template <class Channels, class Stride>
+void subFilter(const uint8_t* pixels, int width, int height, Channels channels, Stride stride, uint8_t* out) {
   for (int y = 0; y < height; ++y) {
     const uint8_t* src = pixels + size_t(y) * size_t(width) * size_t(stride);
     *out++ = 1;
@@ -312,10 +302,13 @@ void PngDeflater::compress(const uint8_t* pixels, int width, int height, int cha
 
   // "Sub" filter: each byte minus the same channel of the pixel to its left.
   filtered_.resize(total);
-  if (channels == 3 && pixelStride == 4) subFilter<3, 4>(pixels, width, height, filtered_.data());
-  else if (channels == 4 && pixelStride == 4) subFilter<4, 4>(pixels, width, height, filtered_.data());
-  else if (channels == 3 && pixelStride == 3) subFilter<3, 3>(pixels, width, height, filtered_.data());
-  else subFilter(pixels, width, height, channels, pixelStride, filtered_.data());
+  using Three = std::integral_constant<int, 3>;
+  using Four = std::integral_constant<int, 4>;
+  uint8_t* f = filtered_.data();
+  if (channels == 3 && pixelStride == 4) subFilter(pixels, width, height, Three{}, Four{}, f);
+  else if (channels == 4 && pixelStride == 4) subFilter(pixels, width, height, Four{}, Four{}, f);
+  else if (channels == 3 && pixelStride == 3) subFilter(pixels, width, height, Three{}, Three{}, f);
+  else subFilter(pixels, width, height, channels, pixelStride, f);
 
   // Blocks of about 128 KiB of scanlines each get their own codes; a match may reach back into the
   // block before. Bound on the output: no token costs more than 16 bits per byte it covers (a
