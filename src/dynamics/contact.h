@@ -3,6 +3,7 @@
 #pragma once
 
 #include "collision/manifold.h"
+#include "collision/manifold_cache.h"
 
 #include <cstdint>
 
@@ -17,6 +18,7 @@ struct Contact {
   Vec3 frictionImpulse = Vec3::Zero();  ///< accumulated tangential impulse at the manifold centre, world (N s)
   float twistImpulse = 0.0f;            ///< accumulated friction impulse about frictionNormal (N m s)
   Vec3 frictionNormal = Vec3::Zero();   ///< the axis twistImpulse was accumulated about
+  ManifoldCache cache;                  ///< the manifold as last made, for reuse while the bodies keep still
   bool touching() const { return manifold.count > 0; }
 };
 

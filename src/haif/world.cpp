@@ -279,21 +279,29 @@ void World::updateBroadPhase() {
 void World::narrowPhase() {
   const uint32_t n = static_cast<uint32_t>(contacts_.size());
   wakeFlag_.resize(n);
+  reusedFlag_.assign(n, 0);
   auto active = [&](uint32_t i) {
     return bodies_.kind[i] == BodyKind::Kinematic || (bodies_.kind[i] == BodyKind::Dynamic && !bodies_.asleep[i]);
   };
+  ManifoldReuseLimits reuseLimits;
+  reuseLimits.margin = settings_.contactMargin;
   parallelFor(n, 64, [&](uint32_t begin, uint32_t end) {
     for (uint32_t ci = begin; ci < end; ++ci) {
       Contact& c = contacts_[ci];
       wakeFlag_[ci] = 0;
       if (!active(c.a) && !active(c.b)) continue;  // sleeping or static on both sides: keep the manifold
+      const Transform &xa = bodies_.xf[c.a], &xb = bodies_.xf[c.b];
+      if (settings_.reuseManifolds && refreshManifold(c.cache, xa, xb, reuseLimits, c.manifold)) {
+        reusedFlag_[ci] = 1;
+        continue;  // same points and ids: the impulses stay where they are
+      }
       const Manifold old = c.manifold;
       // Speculative margin: as far as the pair closes in one step, uncapped, so a small fast body meets a
       // thin wall the step before it would pass it (a 1 m cap let 5 cm bodies through above 60 m/s). It
       // only widens pairs the swept broad-phase boxes already found, and resting pairs keep the base margin.
       const float rel = (bodies_.v[c.b] - bodies_.v[c.a]).norm() * settings_.dt;
-      collide(shapes_[c.a], bodies_.xf[c.a], shapes_[c.b], bodies_.xf[c.b], settings_.contactMargin + rel,
-              c.manifold);
+      collide(shapes_[c.a], xa, shapes_[c.b], xb, settings_.contactMargin + rel, c.manifold);
+      if (settings_.reuseManifolds) rememberManifold(c.manifold, xa, xb, c.cache);
       // Carry accumulated normal impulses over to the points that touch the same features; when
       // the feature ids changed (a reference face switched), fall back to the nearest old point.
       // Friction lives at the manifold's centre and carries over as it is.
@@ -324,6 +332,7 @@ void World::narrowPhase() {
     }
   });
 
+  for (const uint8_t reused : reusedFlag_) stats_.manifoldsReused += reused;
   // Destroy contacts whose fat boxes separated; wake sleeping bodies whose contacts changed.
   for (uint32_t ci = 0; ci < contacts_.size();) {
     Contact& c = contacts_[ci];

@@ -40,6 +40,7 @@ struct WorldSettings {
   bool accelerate = true;           ///< conjugate-gradient momentum between sweeps (contact_solver.h)
   bool coldStartFromWeight = true;  ///< new contacts of a resting pile start from the weight they carry
   bool chainSolve = true;           ///< solve the normal rows of chain-shaped islands (stacks) exactly
+  bool reuseManifolds = true;       ///< keep a pair's manifold while its bodies keep still (manifold_cache.h)
   JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)
   bool sleeping = false;
   float timeToSleep = 0.5f;         ///< s an island must rest before it sleeps
@@ -167,6 +168,7 @@ class World {
   PairMap pairs_;
   std::vector<Contact> contacts_;
   std::vector<uint8_t> wakeFlag_;     // per contact: touching state changed this step
+  std::vector<uint8_t> reusedFlag_;   // per contact: its manifold was reused this step
 
   IslandBuilder islandBuilder_;
   IslandSet islands_;

@@ -85,7 +85,8 @@ TEST(SceneFiles, DefaultsAreApplied) {
 TEST(SceneFiles, KeysAreReadIntoTheDescription) {
   const SceneDesc s = parseOk(R"({
     "name": "custom",
-    "settings": {"dt": 0.01, "gravity": -3, "iterations": 7, "omega": 1.3, "beta": 0.1, "slop": 0.01, "sleeping": true, "frames": 50},
+    "settings": {"dt": 0.01, "gravity": -3, "iterations": 7, "omega": 1.3, "beta": 0.1, "slop": 0.01, "sleeping": true, "frames": 50,
+                 "chain_solve": false, "reuse_manifolds": false},
     "materials": {"ice": {"friction": 0.05, "restitution": 0.1, "density": 900}, "default": {"friction": 0.9}},
     "camera": {"eye": [1, 2, 3], "target": [0, 1, 0], "up": [0, 2, 0], "fov_deg": 60},
     "bodies": [
@@ -104,6 +105,8 @@ TEST(SceneFiles, KeysAreReadIntoTheDescription) {
   EXPECT_EQ(s.settings.iterations, 7);
   EXPECT_FLOAT_EQ(s.settings.omega, 1.3f);
   EXPECT_TRUE(s.settings.sleeping);
+  EXPECT_FALSE(s.settings.chainSolve);
+  EXPECT_FALSE(s.settings.reuseManifolds);
   EXPECT_EQ(s.settings.frames, 50);
   ASSERT_EQ(s.materials.size(), 2u);
   EXPECT_FLOAT_EQ(s.materials[0].friction, 0.9f);  // "default" redefined
