@@ -285,21 +285,26 @@ void World::narrowPhase() {
   };
   ManifoldReuseLimits reuseLimits;
   reuseLimits.margin = settings_.contactMargin;
+  const float restingClosing = reuseLimits.slide + settings_.gravity.norm() * settings_.dt * settings_.dt;
   parallelFor(n, 64, [&](uint32_t begin, uint32_t end) {
     for (uint32_t ci = begin; ci < end; ++ci) {
       Contact& c = contacts_[ci];
       wakeFlag_[ci] = 0;
       if (!active(c.a) && !active(c.b)) continue;  // sleeping or static on both sides: keep the manifold
       const Transform &xa = bodies_.xf[c.a], &xb = bodies_.xf[c.b];
-      if (settings_.reuseManifolds && refreshManifold(c.cache, xa, xb, reuseLimits, c.manifold)) {
-        reusedFlag_[ci] = 1;
-        continue;  // same points and ids: the impulses stay where they are
-      }
-      const Manifold old = c.manifold;
       // Speculative margin: as far as the pair closes in one step, uncapped, so a small fast body meets a
       // thin wall the step before it would pass it (a 1 m cap let 5 cm bodies through above 60 m/s). It
       // only widens pairs the swept broad-phase boxes already found, and resting pairs keep the base margin.
       const float rel = (bodies_.v[c.b] - bodies_.v[c.a]).norm() * settings_.dt;
+      // A pair that barely moves against each other keeps its manifold (a landing one may need points
+      // it does not have yet, so it is made again). Gravity has just been added to the velocities, so
+      // a body resting on a static one closes by g dt² a step before the solver stops it.
+      if (settings_.reuseManifolds && rel < restingClosing &&
+          refreshManifold(c.cache, xa, xb, reuseLimits, c.manifold)) {
+        reusedFlag_[ci] = 1;
+        continue;  // same points and ids: the impulses stay where they are
+      }
+      const Manifold old = c.manifold;
       collide(shapes_[c.a], xa, shapes_[c.b], xb, settings_.contactMargin + rel, c.manifold);
       if (settings_.reuseManifolds) rememberManifold(c.manifold, xa, xb, c.cache);
       // Carry accumulated normal impulses over to the points that touch the same features; when
