@@ -120,19 +120,23 @@ void structuralSimilarity(const Image& a, const Image& b, const std::vector<Pixe
   auto windowAt = [&](int wx, int wy) {
     for (const PixelRect& m : masks)
       if (intersects(m, wx, wy, wx + window, wy + window)) return;
-    double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+    double sa = 0, sb = 0, saa = 0, sbb = 0, sdd = 0;
     for (int y = wy; y < wy + window; ++y) {
       const float* ra = &la[size_t(y) * size_t(w)];
       const float* rb = &lb[size_t(y) * size_t(w)];
       for (int x = wx; x < wx + window; ++x) {
-        const double va = ra[x], vb = rb[x];
-        sa += va, sb += vb, saa += va * va, sbb += vb * vb, sab += va * vb;
+        const double va = ra[x], vb = rb[x], d = va - vb;
+        sa += va, sb += vb, saa += va * va, sbb += vb * vb, sdd += d * d;
       }
     }
-    const double ma = sa / n, mb = sb / n;
+    // SSIM = l · cs with l = (2 μa μb + c1) / (μa² + μb² + c1) and cs = (2 cov + c2) / (σa² + σb² + c2),
+    // written as 1 − (μa − μb)² / (μa² + μb² + c1) and 1 − σ²(a − b) / (σa² + σb² + c2): the same
+    // values, but windows that agree give exactly 1 whatever the rounding (fused multiply-adds gave
+    // 0.99999999999998 for identical images).
+    const double ma = sa / n, mb = sb / n, dm = ma - mb;
     const double va = std::max(0.0, saa / n - ma * ma), vb = std::max(0.0, sbb / n - mb * mb);
-    const double cov = sab / n - ma * mb;
-    const double s = ((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
+    const double vd = std::max(0.0, sdd / n - dm * dm);
+    const double s = (1.0 - dm * dm / (ma * ma + mb * mb + c1)) * (1.0 - vd / (va + vb + c2));
     sum += s;
     ++count;
     worst = std::min(worst, s);
