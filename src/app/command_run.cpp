@@ -7,6 +7,7 @@
 #include "tools/progress.h"
 #include "tools/run_report.h"
 #include "tools/simulation.h"
+#include "tools/start_overlaps.h"
 #include "tools/video.h"
 
 #ifdef HAIF_HAVE_RENDER
@@ -99,6 +100,13 @@ int commandRun(int argc, char** argv) {
   bool renderFailed = false;
 
   Progress progress("run", "step", frames);
+  // After the first step the contacts are those of the starting state.
+  auto warnStartOverlaps = [&](const World& w) {
+    if (w.lastStats().step != 0) return;
+    const std::string text =
+        describeStartOverlaps(sim.scene, deepContacts(w, kStartOverlapWarningDepth), /*maxPairs=*/5);
+    if (!text.empty()) std::fputs(text.c_str(), stderr);
+  };
 #ifdef HAIF_HAVE_RENDER
   std::unique_ptr<render::Renderer> renderer;
   FrameBuilder builder;
@@ -142,6 +150,7 @@ int commandRun(int argc, char** argv) {
   std::vector<uint8_t> pixels;
   int frameIndex = 0;
   auto afterStep = [&](const World& w) {
+    warnStartOverlaps(w);
     progress.advance(int(w.lastStats().step) + 1);
     if (!render || renderFailed) return;
     const StepStats& s = w.lastStats();
@@ -165,7 +174,10 @@ int commandRun(int argc, char** argv) {
     renderMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
   };
 #else
-  auto afterStep = [&](const World& w) { progress.advance(int(w.lastStats().step) + 1); };
+  auto afterStep = [&](const World& w) {
+    warnStartOverlaps(w);
+    progress.advance(int(w.lastStats().step) + 1);
+  };
 #endif
 
   const bool finite = runSteps(sim, frames, stats, metrics, afterStep);

@@ -136,6 +136,29 @@ TEST_F(RunCommand, BadOptionValues) {
   expectCleanFailure(haif("run '" + kStacks + "' --frames" + tail), out, {"--frames"});
 }
 
+// Two boxes 0.1 m through each other, a third resting 5 mm into the ground: the run goes on (exit 0)
+// and says once which bodies overlap and by how much; the resting box is not mentioned.
+TEST_F(RunCommand, DeepOverlapAtTheStartIsAWarning) {
+  const fs::path out = dir_ / "out";
+  const std::string text =
+      "{\n  \"bodies\": [\n"
+      "    {\"name\": \"floor\", \"type\": \"static\", \"shape\": {\"type\": \"box\", \"half_extents\": [20, 1, 20]},"
+      " \"position\": [0, -1, 0]},\n"
+      "    {\"name\": \"left\", \"shape\": {\"type\": \"box\", \"half_extents\": [0.5, 0.5, 0.5]}, \"position\": [0, 3, 0]},\n"
+      "    {\"name\": \"right\", \"shape\": {\"type\": \"box\", \"half_extents\": [0.5, 0.5, 0.5]}, \"position\": [0.9, 3, 0]},\n"
+      "    {\"name\": \"resting\", \"shape\": {\"type\": \"box\", \"half_extents\": [0.5, 0.5, 0.5]}, \"position\": [5, 0.495, 0]}\n"
+      "  ]\n}\n";
+  const std::string scene = writeScene("overlap.json", text);
+  const Result r = haif("run '" + scene + "' --no-render --frames 5 --out '" + out.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_TRUE(fs::exists(out / "summary.json"));
+  EXPECT_NE(r.err.find("warning: " + scene + ": bodies[1] \"left\" and bodies[2] \"right\" overlap by 0.100 m"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("resting"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
 TEST_F(RunCommand, GoodRunWritesSummaryAndStats) {
   const fs::path out = dir_ / "out";
   const Result r = haif("run '" + kStacks + "' --no-render --frames 30 --threads 2 --out '" + out.string() + "'");
