@@ -22,7 +22,6 @@ bool invertSymmetric3(const double a[3][3], double out[3][3], double minDetRatio
 }
 
 int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned mask, double B[kMaxManifoldPoints][3]) {
-  for (int i = 0; i < kMaxManifoldPoints; ++i) B[i][0] = B[i][1] = B[i][2] = 0.0;
   // The span of [1, s, t] does not depend on where (s, t) are measured from, but the rank test does:
   // it takes the spread about the points' mean (the coordinates of a whole manifold already are).
   const unsigned all = (1u << count) - 1u;
@@ -34,18 +33,25 @@ int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned m
       mt += coords[i][1];
       ++m;
     }
-  if (m == 0) return 0;
+  if (m == 0) {
+    for (int i = 0; i < kMaxManifoldPoints; ++i) B[i][0] = B[i][1] = B[i][2] = 0.0;
+    return 0;
+  }
   if ((mask & all) == all) ms = mt = 0.0;
   else ms /= m, mt /= m;
+  // Every entry is written (rows of points not in the mask are zero), so no separate clearing pass:
+  // called once per manifold per step, the clearing loops compiled to two memset calls.
   double css = 0.0, ctt = 0.0, cst = 0.0;
-  for (int i = 0; i < count; ++i) {
-    if (!(mask & (1u << i))) continue;
-    B[i][0] = 1.0;
-    B[i][1] = coords[i][0] - ms;
-    B[i][2] = coords[i][1] - mt;
-    css += B[i][1] * B[i][1];
-    ctt += B[i][2] * B[i][2];
-    cst += B[i][1] * B[i][2];
+  for (int i = 0; i < kMaxManifoldPoints; ++i) {
+    const bool in = i < count && (mask & (1u << i));
+    const double s = in ? coords[i][0] - ms : 0.0, t = in ? coords[i][1] - mt : 0.0;
+    B[i][0] = in ? 1.0 : 0.0;
+    B[i][1] = s;
+    B[i][2] = t;
+    if (!in) continue;
+    css += s * s;
+    ctt += t * t;
+    cst += s * t;
   }
   const double spread = css + ctt;
   const bool single = m < 2 || !(spread > 1e-12);  // all points in one place
@@ -61,11 +67,9 @@ int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned m
 void planarCoords(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
                   double coords[kMaxManifoldPoints][2]) {
   for (int i = 0; i < kMaxManifoldPoints; ++i) {
-    coords[i][0] = coords[i][1] = 0.0;
-    if (i >= mf.count) continue;
-    const Vec3 d = mf.points[i].position - centre;
-    coords[i][0] = d.dot(t1);
-    coords[i][1] = d.dot(t2);
+    const Vec3 d = i < mf.count ? Vec3(mf.points[i].position - centre) : Vec3::Zero();
+    coords[i][0] = i < mf.count ? double(d.dot(t1)) : 0.0;
+    coords[i][1] = i < mf.count ? double(d.dot(t2)) : 0.0;
   }
 }
 
