@@ -67,9 +67,13 @@ int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned m
 void planarCoords(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
                   double coords[kMaxManifoldPoints][2]) {
   for (int i = 0; i < kMaxManifoldPoints; ++i) {
-    const Vec3 d = i < mf.count ? Vec3(mf.points[i].position - centre) : Vec3::Zero();
-    coords[i][0] = i < mf.count ? double(d.dot(t1)) : 0.0;
-    coords[i][1] = i < mf.count ? double(d.dot(t2)) : 0.0;
+    if (i < mf.count) {
+      const Vec3 d = mf.points[i].position - centre;
+      coords[i][0] = d.dot(t1);
+      coords[i][1] = d.dot(t2);
+    } else {
+      coords[i][0] = coords[i][1] = 0.0;
+    }
   }
 }
 
