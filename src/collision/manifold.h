@@ -3,6 +3,7 @@
 
 #include "core/math.h"
 
+#include <algorithm>
 #include <cstdint>
 
 namespace haif {
@@ -19,6 +20,12 @@ struct ContactPoint {
 struct Manifold {
   int count = 0;
   ContactPoint points[kMaxManifoldPoints];
+  /// Depth of the deepest point; 0 when no point overlaps.
+  float deepest() const {
+    float d = 0.0f;
+    for (int i = 0; i < count; ++i) d = std::max(d, points[i].depth);
+    return d;
+  }
 };
 
 }  // namespace haif

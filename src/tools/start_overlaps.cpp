@@ -8,8 +8,7 @@ namespace haif {
 std::vector<StartOverlap> deepContacts(const World& world, float minDepth) {
   std::vector<StartOverlap> out;
   for (const Contact& c : world.contacts()) {
-    float depth = 0.0f;
-    for (int i = 0; i < c.manifold.count; ++i) depth = std::max(depth, c.manifold.points[i].depth);
+    const float depth = c.manifold.deepest();
     if (depth > minDepth) out.push_back({std::min(c.a, c.b), std::max(c.a, c.b), depth});
   }
   std::sort(out.begin(), out.end(), [](const StartOverlap& x, const StartOverlap& y) {

@@ -22,7 +22,7 @@ double currentMaxPenetration(const World& world) {
   double m = 0.0;
   for (const Contact& c : world.contacts()) {
     if (!c.touching()) continue;
-    for (int i = 0; i < c.manifold.count; ++i) m = std::max(m, double(c.manifold.points[i].depth));
+    m = std::max(m, double(c.manifold.deepest()));
   }
   return m;
 }
