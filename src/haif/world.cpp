@@ -444,11 +444,17 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias) {
   const Island& isl = islands_.islands[k];
   ContactConstraint* cs = constraints_.data() + isl.firstContact;
   const float omega = settings_.omega;
-  SweepResult r = isChain_[k] ? solveChainIteration(bodies_, cs, chainLinks_.data() + isl.firstContact,
-                                                     isl.contactCount, omega, useBias)
-                              : forEachStrip(k, [&](uint32_t b, uint32_t e) {
-                                  return solveIteration(bodies_, cs + b, e - b, omega, useBias);
-                                });
+  SweepResult r;
+  if (isChain_[k]) {
+    r = solveChainIteration(bodies_, cs, chainLinks_.data() + isl.firstContact, isl.contactCount, omega, useBias);
+  } else if (isWide(k)) {
+    const LaneBatches lb = lanesOf(k);
+    r = forEachStrip(k, [&](uint32_t b, uint32_t e) {
+      return solveIterationLanes(bodies_, cs + b, e - b, {lb.run + b, lb.wideOf + b, lb.wide}, omega, useBias);
+    });
+  } else {
+    r = forEachStrip(k, [&](uint32_t b, uint32_t e) { return solveIteration(bodies_, cs + b, e - b, omega, useBias); });
+  }
   if (isl.jointCount > 0) {
     JointTree* tree = settings_.joints.treeSolve ? &jointTrees_[k] : nullptr;
     r.residual = std::max(r.residual, solveJointIteration(bodies_, jointConstraints_.data() + isl.firstJoint,
@@ -480,6 +486,43 @@ void World::splitGiantIslands() {
   islands_.largestRows = largest;
 }
 
+// Each range a sweep runs as one piece (an island, or a strip or tail of a split one) is grouped
+// into lane batches for the wide sweep; the order change does not change the sweep's result.
+void World::batchLanes() {
+  if (!settings_.wideSolve) return;
+  laneRun_.resize(islands_.contacts.size());
+  const float* levels = settings_.topDownOrder ? contactHeight_.data() : nullptr;
+  const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
+  for (uint32_t k = 0; k < m; ++k) {
+    const Island& isl = islands_.islands[k];
+    uint32_t* ids = islands_.contacts.data() + isl.firstContact;
+    uint8_t* run = laneRun_.data() + isl.firstContact;
+    const int32_t li = layoutOf_[k];
+    if (li < 0) {
+      laneBatcher_.batch(bodies_, contacts_.data(), levels, ids, isl.contactCount, run);
+      continue;
+    }
+    const StripLayout& layout = layouts_[li];
+    for (uint32_t s = 0; s <= layout.strips; ++s) {
+      const uint32_t b = layout.start[s], e = layout.start[s + 1];
+      laneBatcher_.batch(bodies_, contacts_.data(), levels, ids + b, e - b, run + b);
+    }
+  }
+  // Batches of at least kMinWideLanes constraints are packed for the wide sweep.
+  wideOf_.resize(laneRun_.size());
+  uint32_t packed = 0;
+  for (size_t j = 0; j < laneRun_.size(); ++j)
+    wideOf_[j] = laneRun_[j] >= kMinWideLanes ? int32_t(packed++) : -1;
+  if (wide_.size() < packed) wide_.resize(packed);
+}
+
+LaneBatches World::lanesOf(uint32_t k) {
+  const uint32_t first = islands_.islands[k].firstContact;
+  return {laneRun_.data() + first, wideOf_.data() + first, wide_.data()};
+}
+
+bool World::isWide(uint32_t k) const { return settings_.wideSolve && !isChain_[k]; }
+
 void World::solveIslands(int iterations) {
   const SolverParams sp = solverParams();
   const float tol = settings_.residualTolerance;
@@ -498,6 +541,13 @@ void World::solveIslands(int iterations) {
       warmStart(bodies_, cs + b, e - b);
       return SweepResult{};
     });
+    if (isWide(k)) {
+      const LaneBatches lb = lanesOf(k);
+      forEachStrip(k, [&](uint32_t b, uint32_t e) {
+        packLanes(cs + b, e - b, {lb.run + b, lb.wideOf + b, lb.wide});
+        return SweepResult{};
+      });
+    }
     if (isl.jointCount > 0) prepareJoints(k, sp);
   };
   auto sweepIslandMain = [&](uint32_t k) {
@@ -507,6 +557,8 @@ void World::solveIslands(int iterations) {
     // A chain is solved exactly each sweep: nothing for momentum to carry.
     const bool cg = settings_.accelerate && isl.jointCount == 0 && !isChain_[k];
     const uint32_t n = isl.contactCount;
+    const bool wide = isWide(k);
+    const LaneBatches lb = wide ? lanesOf(k) : LaneBatches{};
     double lastChange = 0.0;
     int it = 0;
     float residual = 0.0f;
@@ -525,11 +577,14 @@ void World::solveIslands(int iterations) {
       }
       const double change = sweep.change;
       if (it == 1 || lastChange <= 0.0 || change > lastChange) {
-        startDirection(cs, n);  // first direction, or a restart: the last step overshot
+        // First direction, or a restart: the last step overshot.
+        if (wide) startDirectionLanes(cs, n, lb);
+        else startDirection(cs, n);
       } else {
         const float beta = float(change / lastChange);
         forEachStrip(k, [&](uint32_t b, uint32_t e) {
-          accelerate(bodies_, cs + b, e - b, beta);
+          if (wide) accelerateLanes(bodies_, cs + b, e - b, {lb.run + b, lb.wideOf + b, lb.wide}, beta);
+          else accelerate(bodies_, cs + b, e - b, beta);
           return SweepResult{};
         });
       }
@@ -581,7 +636,14 @@ void World::relaxIslands(int relaxIterations) {
   };
   auto store = [&](uint32_t k) {
     const Island& isl = islands_.islands[k];
-    const ContactConstraint* cs = constraints_.data() + isl.firstContact;
+    ContactConstraint* cs = constraints_.data() + isl.firstContact;
+    if (isWide(k)) {
+      const LaneBatches lb = lanesOf(k);
+      forEachStrip(k, [&](uint32_t b, uint32_t e) {
+        unpackLanes(cs + b, e - b, {lb.run + b, lb.wideOf + b, lb.wide});
+        return SweepResult{};
+      });
+    }
     forEachContactChunk(k, 1024, [&](uint32_t b, uint32_t e) { storeImpulses(cs + b, e - b, contacts_.data()); });
     if (isl.jointCount > 0) finishJoints(k);
     if (isl.contactCount + isl.jointCount > 0) islandIterations_[k] += relaxIterations;
@@ -841,6 +903,7 @@ void World::step() {
   if (settings_.topDownOrder) orderContactsTopDown();
   if (settings_.coldStartFromWeight && settings_.warmStart && settings_.topDownOrder) estimateColdImpulses();
   splitGiantIslands();
+  batchLanes();
   std::fill(islandOfBody_.begin(), islandOfBody_.end(), -1);
   for (uint32_t k = 0; k < islands_.islands.size(); ++k) {
     const Island& isl = islands_.islands[k];

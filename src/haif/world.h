@@ -16,6 +16,7 @@
 #include "haif/island_split.h"
 #include "haif/islands.h"
 #include "haif/iteration_controller.h"
+#include "haif/lane_batches.h"
 #include "haif/step_stats.h"
 
 #include <tbb/task_arena.h>
@@ -39,6 +40,10 @@ struct WorldSettings {
   bool topDownOrder = true;         ///< solve the highest contacts of an island first
   bool accelerate = true;           ///< conjugate-gradient momentum between sweeps (contact_solver.h)
   bool coldStartFromWeight = true;  ///< new contacts of a resting pile start from the weight they carry
+  /// Sweep contacts kLanes manifolds at a time with SIMD, in lane batches (wide_contact_solver.h,
+  /// lane_batches.h). Off by default: 3.8× faster per manifold in cache, but no faster yet on whole
+  /// scenes (docs/solver.md, "Wide sweeps").
+  bool wideSolve = false;
   bool chainSolve = true;           ///< solve the normal rows of chain-shaped islands (stacks) exactly
   bool reuseManifolds = true;       ///< keep a pair's manifold while its bodies keep still (manifold_cache.h)
   JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)
@@ -127,6 +132,7 @@ class World {
   void solve(int iterations);
   void solveIslands(int iterations);
   void splitGiantIslands();
+  void batchLanes();
   template <class F> SweepResult forEachStrip(uint32_t island, F&& f);
   /// f(begin, end) over island k's contacts: in chunks of `grain` in parallel for a split (giant)
   /// island, as one range on the calling thread otherwise.
@@ -188,6 +194,13 @@ class World {
   std::vector<int32_t> layoutOf_;     // per island: index into layouts_, or -1 when not split
   std::vector<StripLayout> layouts_;  // strips of this step's split islands (grows, then reused)
   std::vector<SweepResult> stripResult_;  // per layout, per strip: what its last sweep did
+  LaneBatcher laneBatcher_;
+  std::vector<uint8_t> laneRun_;  // per contact slot: length of the lane batch starting there, else 0
+  std::vector<int32_t> wideOf_;   // per contact slot starting a batch: its wide_ index, or -1 (scalar)
+  std::vector<WideContactBatch> wide_;  // packed rows of this step's wide batches (grows, then reused)
+  LaneBatches lanesOf(uint32_t island);
+  /// Island k's contacts are swept by the wide solver (packed this step).
+  bool isWide(uint32_t island) const;
 
   std::vector<Joint> joints_;
   std::vector<JointConstraint> jointConstraints_;  // solver rows, grouped by island like constraints_

@@ -18,6 +18,7 @@ WorldSettings worldSettingsFor(const SceneDesc& scene) {
   s.sleeping = scene.settings.sleeping;
   s.accelerate = scene.settings.accelerate;
   s.chainSolve = scene.settings.chainSolve;
+  s.wideSolve = scene.settings.wideSolve;
   s.reuseManifolds = scene.settings.reuseManifolds;
   return s;
 }

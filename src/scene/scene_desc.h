@@ -94,6 +94,7 @@ struct SimSettings {
   bool sleeping = false;    ///< bodies (islands) at rest go to sleep
   bool accelerate = true;   ///< conjugate-gradient momentum between solver sweeps
   bool chainSolve = true;   ///< exact solve of chain-shaped islands (stacks): dynamics/contact_chain.h
+  bool wideSolve = false;   ///< SIMD sweeps over lane batches: dynamics/wide_contact_solver.h
   bool reuseManifolds = true;  ///< keep manifolds of pairs at rest: collision/manifold_cache.h
   int frames = 300;         ///< default number of steps for `haif run`
 };
