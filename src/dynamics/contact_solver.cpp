@@ -420,7 +420,7 @@ namespace {
 
 [[gnu::always_inline]] inline float normalRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb,
                                                float omega, bool useBias) {
-  float applied[kMaxManifoldPoints];
+  float applied[kMaxManifoldPoints] = {};  // unused rows stay 0 (normalChange writes all four deltas)
   switch (c.count) {
     case 4: solveNormalBlock<4>(c, va, wa, vb, wb, omega, useBias, applied); break;
     case 3: solveNormalBlock<3>(c, va, wa, vb, wb, omega, useBias, applied); break;
