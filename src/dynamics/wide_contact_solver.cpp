@@ -8,6 +8,10 @@
 #include <immintrin.h>
 #endif
 
+// Without AVX, GCC notes that 32-byte vectors passed by value change the calling convention. Every
+// function here that does so is internal to this file, so no two conventions ever meet.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 namespace haif {
 
 using wide::F8;
