@@ -34,6 +34,8 @@ struct BodyStore {
 
   size_t size() const { return xf.size(); }
   bool isDynamic(uint32_t i) const { return kind[i] == BodyKind::Dynamic; }
+  /// Dynamic and awake: a body the solver moves (static, kinematic and sleeping ones it only reads).
+  bool isAwakeDynamic(uint32_t i) const { return kind[i] == BodyKind::Dynamic && !asleep[i]; }
 
   /// Appends a body and returns its id.
   uint32_t add(BodyKind k, const Transform& t, float m, const Mat3& inertia) {

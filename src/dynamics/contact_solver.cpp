@@ -162,8 +162,8 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   cc.a = a;
   cc.b = b;
   cc.contact = ci;
-  cc.dynA = bodies.kind[a] == BodyKind::Dynamic && !bodies.asleep[a];
-  cc.dynB = bodies.kind[b] == BodyKind::Dynamic && !bodies.asleep[b];
+  cc.dynA = bodies.isAwakeDynamic(a);
+  cc.dynB = bodies.isAwakeDynamic(b);
   cc.invMassA = cc.dynA ? bodies.invMass[a] : 0.0f;
   cc.invMassB = cc.dynB ? bodies.invMass[b] : 0.0f;
   const Mat3 iA = cc.dynA ? bodies.invInertiaWorld[a] : Mat3::Zero();

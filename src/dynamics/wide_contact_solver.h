@@ -75,6 +75,8 @@ struct LaneBatches {
   const uint8_t* run;
   const int32_t* wideOf;
   WideContactBatch* wide;
+  /// The same batches seen from slot `first` on (a strip of the range).
+  LaneBatches from(size_t first) const { return {run + first, wideOf + first, wide}; }
 };
 
 /// Packs the range's wide batches (after prepare and warm start).

@@ -56,13 +56,12 @@ void IslandSplitter::split(const BodyStore& bodies, const std::vector<Contact>& 
   // count: it is never written); bodies further apart than neighbouring strips go to the tail.
   uint32_t* cs = set.contacts.data() + isl.firstContact;
   const uint32_t nc = isl.contactCount;
-  auto member = [&](uint32_t b) { return bodies.kind[b] == BodyKind::Dynamic && !bodies.asleep[b]; };
   stripOfContact_.resize(nc);
   for (uint32_t s = 0; s <= strips; ++s) out.rows[s] = 0;
   uint32_t count[kMaxStrips + 1] = {};
   for (uint32_t j = 0; j < nc; ++j) {
     const Contact& c = contacts[cs[j]];
-    const bool ma = member(c.a), mb = member(c.b);
+    const bool ma = bodies.isAwakeDynamic(c.a), mb = bodies.isAwakeDynamic(c.b);
     const uint32_t sa = ma ? stripOfBody_[c.a] : stripOfBody_[c.b];
     const uint32_t sb = mb ? stripOfBody_[c.b] : sa;
     const uint32_t lo = std::min(sa, sb), hi = std::max(sa, sb);

@@ -6,19 +6,15 @@
 
 namespace haif {
 
-namespace {
-inline bool active(const BodyStore& b, uint32_t i) { return b.kind[i] == BodyKind::Dynamic && !b.asleep[i]; }
-}  // namespace
-
 void IslandBuilder::build(const BodyStore& bodies, const std::vector<Contact>& contacts,
                           const std::vector<Joint>& joints, IslandSet& out) {
   const uint32_t n = static_cast<uint32_t>(bodies.size());
   parent_.resize(n);
   for (uint32_t i = 0; i < n; ++i) parent_[i] = i;
   for (const Contact& c : contacts) {
-    if (c.touching() && active(bodies, c.a) && active(bodies, c.b)) unite(c.a, c.b);
+    if (c.touching() && bodies.isAwakeDynamic(c.a) && bodies.isAwakeDynamic(c.b)) unite(c.a, c.b);
   }
-  auto activeEnd = [&](uint32_t i) { return i != kWorldBody && active(bodies, i); };
+  auto activeEnd = [&](uint32_t i) { return i != kWorldBody && bodies.isAwakeDynamic(i); };
   for (const Joint& j : joints)
     if (!j.broken && activeEnd(j.def.bodyA) && activeEnd(j.def.bodyB)) unite(j.def.bodyA, j.def.bodyB);
 
@@ -26,7 +22,7 @@ void IslandBuilder::build(const BodyStore& bodies, const std::vector<Contact>& c
   islandOfRoot_.assign(n, -1);
   unsorted_.clear();
   for (uint32_t i = 0; i < n; ++i) {
-    if (!active(bodies, i)) continue;
+    if (!bodies.isAwakeDynamic(i)) continue;
     const uint32_t r = find(i);
     if (islandOfRoot_[r] < 0) {
       islandOfRoot_[r] = static_cast<int32_t>(unsorted_.size());
@@ -36,8 +32,8 @@ void IslandBuilder::build(const BodyStore& bodies, const std::vector<Contact>& c
   }
   auto islandOfContact = [&](const Contact& c) -> int32_t {
     if (!c.touching()) return -1;
-    if (active(bodies, c.a)) return islandOfRoot_[find(c.a)];
-    if (active(bodies, c.b)) return islandOfRoot_[find(c.b)];
+    if (bodies.isAwakeDynamic(c.a)) return islandOfRoot_[find(c.a)];
+    if (bodies.isAwakeDynamic(c.b)) return islandOfRoot_[find(c.b)];
     return -1;
   };
   for (const Contact& c : contacts) {
@@ -93,7 +89,7 @@ void IslandBuilder::build(const BodyStore& bodies, const std::vector<Contact>& c
   out.contacts.resize(fc);
   out.joints.resize(fj);
   for (uint32_t i = 0; i < n; ++i) {
-    if (!active(bodies, i)) continue;
+    if (!bodies.isAwakeDynamic(i)) continue;
     out.bodies[cursorBody_[islandOfRoot_[find(i)]]++] = i;
   }
   for (uint32_t ci = 0; ci < contacts.size(); ++ci) {

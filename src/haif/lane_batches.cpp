@@ -12,8 +12,6 @@ void LaneBatcher::batch(const BodyStore& bodies, const Contact* contacts, const 
   batchOf_.resize(n);
   fill_.clear();
   nextOpen_.clear();
-  // Only dynamic awake bodies are written by a sweep; static and kinematic ends are shared freely.
-  auto member = [&](uint32_t b) { return bodies.kind[b] == BodyKind::Dynamic && !bodies.asleep[b]; };
   // First batch at or after i with room (fill_.size(): none). Full batches point past themselves.
   auto firstOpen = [&](uint32_t i) {
     const uint32_t m = uint32_t(fill_.size());
@@ -26,7 +24,8 @@ void LaneBatcher::batch(const BodyStore& bodies, const Contact* contacts, const 
   };
   for (uint32_t j = 0; j < n; ++j) {
     const Contact& c = contacts[ids[j]];
-    const bool ma = member(c.a), mb = member(c.b);
+    // Only awake dynamic bodies are written by a sweep; static and kinematic ends are shared freely.
+    const bool ma = bodies.isAwakeDynamic(c.a), mb = bodies.isAwakeDynamic(c.b);
     int32_t after = -1;
     if (ma) after = std::max(after, lastBatch_[c.a]);
     if (mb) after = std::max(after, lastBatch_[c.b]);
@@ -60,7 +59,6 @@ void LaneBatcher::batch(const BodyStore& bodies, const Contact* contacts, const 
 void LaneBatcher::colourLevels(const BodyStore& bodies, const Contact* contacts, const float* level, uint32_t* ids,
                                uint32_t n) {
   if (colours_.size() < bodies.size()) colours_.resize(bodies.size(), 0u);
-  auto member = [&](uint32_t b) { return bodies.kind[b] == BodyKind::Dynamic && !bodies.asleep[b]; };
   colourOf_.resize(n);
   scratch_.resize(n);
   for (uint32_t l0 = 0, l1; l0 < n; l0 = l1) {
@@ -68,18 +66,14 @@ void LaneBatcher::colourLevels(const BodyStore& bodies, const Contact* contacts,
     for (l1 = l0 + 1; l1 < n && level[ids[l1]] >= top - kLevelTolerance; ++l1) {}
     if (l1 - l0 < 2) continue;
     // Greedy colouring in solve order: the smallest colour neither body has in this level.
-    uint32_t used = 0;
     for (uint32_t j = l0; j < l1; ++j) {
       const Contact& c = contacts[ids[j]];
-      uint32_t taken = 0;
-      if (member(c.a)) taken |= colours_[c.a];
-      if (member(c.b)) taken |= colours_[c.b];
-      const uint32_t free = ~taken;
-      const uint32_t colour = free ? uint32_t(__builtin_ctz(free)) : 31u;
+      const bool ma = bodies.isAwakeDynamic(c.a), mb = bodies.isAwakeDynamic(c.b);
+      const uint32_t taken = (ma ? colours_[c.a] : 0u) | (mb ? colours_[c.b] : 0u);
+      const uint32_t colour = ~taken ? uint32_t(__builtin_ctz(~taken)) : 31u;
       colourOf_[j] = uint8_t(colour);
-      used |= 1u << colour;
-      if (member(c.a)) colours_[c.a] |= 1u << colour;
-      if (member(c.b)) colours_[c.b] |= 1u << colour;
+      if (ma) colours_[c.a] |= 1u << colour;
+      if (mb) colours_[c.b] |= 1u << colour;
     }
     // Colour by colour, solve order inside a colour (a stable counting sort).
     uint32_t at[33] = {};
@@ -91,7 +85,6 @@ void LaneBatcher::colourLevels(const BodyStore& bodies, const Contact* contacts,
       colours_[c.a] = colours_[c.b] = 0u;
       ids[j] = scratch_[j];
     }
-    (void)used;
   }
 }
 

@@ -8,6 +8,10 @@
 // commute). The top-down order that carries a stack's weight down in one sweep survives, which a
 // graph colouring does not (see island_split.h).
 //
+// With solve-order keys given, contacts whose keys lie within kLevelTolerance (a row of boxes at one
+// height) first form a level, coloured greedily and put colour by colour: the order between levels
+// stays, inside a level it changes (a row in solve order would otherwise allow one contact per batch).
+//
 // Batches are contiguous runs of the reordered range, described per slot in `run`: the first slot
 // of a batch holds its length (1..kLanes), the others 0.
 #pragma once

@@ -450,7 +450,7 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias) {
   } else if (isWide(k)) {
     const LaneBatches lb = lanesOf(k);
     r = forEachStrip(k, [&](uint32_t b, uint32_t e) {
-      return solveIterationLanes(bodies_, cs + b, e - b, {lb.run + b, lb.wideOf + b, lb.wide}, omega, useBias);
+      return solveIterationLanes(bodies_, cs + b, e - b, lb.from(b), omega, useBias);
     });
   } else {
     r = forEachStrip(k, [&](uint32_t b, uint32_t e) { return solveIteration(bodies_, cs + b, e - b, omega, useBias); });
@@ -544,7 +544,7 @@ void World::solveIslands(int iterations) {
     if (isWide(k)) {
       const LaneBatches lb = lanesOf(k);
       forEachStrip(k, [&](uint32_t b, uint32_t e) {
-        packLanes(cs + b, e - b, {lb.run + b, lb.wideOf + b, lb.wide});
+        packLanes(cs + b, e - b, lb.from(b));
         return SweepResult{};
       });
     }
@@ -583,7 +583,7 @@ void World::solveIslands(int iterations) {
       } else {
         const float beta = float(change / lastChange);
         forEachStrip(k, [&](uint32_t b, uint32_t e) {
-          if (wide) accelerateLanes(bodies_, cs + b, e - b, {lb.run + b, lb.wideOf + b, lb.wide}, beta);
+          if (wide) accelerateLanes(bodies_, cs + b, e - b, lb.from(b), beta);
           else accelerate(bodies_, cs + b, e - b, beta);
           return SweepResult{};
         });
@@ -640,7 +640,7 @@ void World::relaxIslands(int relaxIterations) {
     if (isWide(k)) {
       const LaneBatches lb = lanesOf(k);
       forEachStrip(k, [&](uint32_t b, uint32_t e) {
-        unpackLanes(cs + b, e - b, {lb.run + b, lb.wideOf + b, lb.wide});
+        unpackLanes(cs + b, e - b, lb.from(b));
         return SweepResult{};
       });
     }
@@ -801,7 +801,7 @@ void World::estimateColdImpulses() {
     slope = c.manifold.points[0].normal.dot(up);
     if (std::fabs(slope) < 0.7f) return -1;
     const uint32_t u = slope > 0.0f ? c.b : c.a;
-    return bodies_.kind[u] == BodyKind::Dynamic && !bodies_.asleep[u] ? int64_t(u) : -1;
+    return bodies_.isAwakeDynamic(u) ? int64_t(u) : -1;
   };
   // Islands share no dynamic body (a static lower body receives nothing): they run concurrently.
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
@@ -826,7 +826,7 @@ void World::estimateColdImpulses() {
         if (u < 0) continue;
         const uint32_t lower = uint32_t(u) == c.a ? c.b : c.a;
         const float share = (bodies_.mass[u] * g * dt + carried_[u]) / float(supports_[u]);
-        if (bodies_.kind[lower] == BodyKind::Dynamic && !bodies_.asleep[lower]) carried_[lower] += share;
+        if (bodies_.isAwakeDynamic(lower)) carried_[lower] += share;
         bool cold = true;
         for (int i = 0; i < c.manifold.count; ++i) cold = cold && c.normalImpulse[i] == 0.0f;
         const float vn = std::fabs(c.manifold.points[0].normal.dot(bodies_.v[c.b] - bodies_.v[c.a]));
