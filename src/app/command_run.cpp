@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 
 namespace haif {
 
@@ -38,7 +39,7 @@ int commandRun(int argc, char** argv) {
                  {"--frames", "--out", "--threads", "--mode", "--iterations", "--budget-ms", "--width", "--height",
                   "--replay", "--calibration", "--i-min", "--view", "--overlay-corner", "--frame-every",
                   "--error-every", "--video"},
-                 {"--no-render", "--contacts", "--no-overlay"});
+                 {"--no-render", "--contacts", "--no-overlay", "--render-phases"});
   std::string error;
   if (!cl.parse(argc, argv, 2, error)) return fail(error, 2);
   if (cl.positional().size() != 1) return fail("haif run: expected exactly one SCENE file (see 'haif help')", 2);
@@ -71,6 +72,8 @@ int commandRun(int argc, char** argv) {
 #ifndef HAIF_HAVE_RENDER
   if (render) return fail("haif run: this build has no renderer; use --no-render", 2);
 #endif
+  const bool renderPhases = cl.has("--render-phases");
+  if (renderPhases && !render) return fail("haif run: --render-phases needs rendering (drop --no-render)", 2);
   const std::string video = cl.get("--video");
   if (!video.empty() && !render) return fail("haif run: --video needs rendering (drop --no-render)", 2);
 
@@ -97,6 +100,8 @@ int commandRun(int argc, char** argv) {
   RunMetrics metrics;
   metrics.begin(world, uint64_t(frames));
   std::vector<double> renderMs;
+  // --render-phases: per phase, its time in each frame (a glFinish per phase; for profiling).
+  std::vector<std::vector<double>> phaseMs;
   bool renderFailed = false;
 
   Progress progress("run", "step", frames);
@@ -115,6 +120,7 @@ int commandRun(int argc, char** argv) {
     render::RendererOptions ro;
     ro.width = width;
     ro.height = height;
+    ro.timePhases = renderPhases;
     renderer = render::Renderer::create(ro, &error);
     if (!renderer) return fail("haif run: renderer: " + error);
     if (!builder.registerMeshes(world, sim.scene, *renderer, error))
@@ -172,6 +178,12 @@ int commandRun(int argc, char** argv) {
       renderFailed = true;
     }
     renderMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    if (renderPhases) {
+      const render::RenderPhaseTimes& p = renderer->lastPhaseTimes();
+      const double each[] = {p.prepare, p.shadow, p.scene, p.sky, p.resolve, p.readback, p.flip, p.overlay};
+      phaseMs.resize(std::size(each));
+      for (size_t i = 0; i < std::size(each); ++i) phaseMs[i].push_back(each[i]);
+    }
   };
 #else
   auto afterStep = [&](const World& w) {
@@ -188,6 +200,10 @@ int commandRun(int argc, char** argv) {
 #endif
   info.stateHash = world.stateHash();
   if (!renderMs.empty()) info.renderMsPerFrameMedian = quantile(renderMs, 0.5);
+  if (!phaseMs.empty()) {
+    const char* names[] = {"prepare", "shadow", "scene", "sky", "resolve", "readback", "flip", "overlay"};
+    for (size_t i = 0; i < phaseMs.size(); ++i) info.renderPhaseMsMedian.emplace_back(names[i], quantile(phaseMs[i], 0.5));
+  }
 
   if (!writeFileAtomic(outDir + "/stats.csv", statsCsv(stats), error)) return fail(error);
   if (!writeFileAtomic(outDir + "/summary.json", summaryJson(info, stats, metrics, world), error)) return fail(error);

@@ -17,7 +17,7 @@ void usage(FILE* out) {
       "                  [--replay RUN/stats.csv] [--calibration FILE] [--i-min N]\n"
       "                  [--width W --height H] [--view normal|island|sleep|heat] [--contacts]\n"
       "                  [--no-overlay] [--overlay-corner tl|tr|bl|br] [--frame-every K]\n"
-      "                  [--error-every K] [--video FILE.mp4]\n"
+      "                  [--error-every K] [--video FILE.mp4] [--render-phases]\n"
       "  bench           run time against error: iteration and budget sweeps per scene and engine,\n"
       "                  the seed's table (sequential / HAIF / Bullet); results.csv, report.md, plots\n"
       "                  [--scenes a,b,..] [--engines haif,bullet] [--quick] [--steps N] [--threads T]\n"

@@ -35,9 +35,9 @@ struct RendererOptions {
 
 /// Wall time of each phase of the last render() in ms; all zero unless RendererOptions::timePhases.
 struct RenderPhaseTimes {
-  double prepare = 0;   ///< classify, sort and upload instances
+  double prepare = 0;   ///< classify, sort, hidden faces, occlusion, uploads
   double shadow = 0;    ///< shadow map pass
-  double scene = 0;     ///< main pass: bodies and ground
+  double scene = 0;     ///< main pass: bodies and ground (and the lazy depth clear)
   double sky = 0;       ///< sky behind everything
   double resolve = 0;   ///< MSAA resolve
   double readback = 0;  ///< glReadPixels

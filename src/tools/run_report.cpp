@@ -109,6 +109,11 @@ std::string summaryJson(const RunInfo& info, const std::vector<StepStats>& steps
   std::snprintf(hash, sizeof hash, "%016llx", (unsigned long long)info.stateHash);
   j["state_hash"] = hash;
   if (info.renderMsPerFrameMedian >= 0) j["render_ms_per_frame_median"] = info.renderMsPerFrameMedian;
+  if (!info.renderPhaseMsMedian.empty()) {
+    nlohmann::ordered_json phases = nlohmann::ordered_json::object();
+    for (const auto& [name, ms] : info.renderPhaseMsMedian) phases[name] = ms;
+    j["render_phase_ms_median"] = phases;
+  }
   return j.dump(2) + "\n";
 }
 

@@ -5,6 +5,7 @@
 #include "tools/run_metrics.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace haif {
@@ -17,6 +18,8 @@ struct RunInfo {
   double budgetMs = 0;
   uint64_t stateHash = 0;
   double renderMsPerFrameMedian = -1;  ///< < 0: not rendered
+  /// With `haif run --render-phases`: the median ms of each render phase, in render order.
+  std::vector<std::pair<std::string, double>> renderPhaseMsMedian;
 };
 
 /// The CSV header and one line per step.

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -228,6 +229,42 @@ TEST_F(RunCommand, RenderingDoesNotChangeTheSimulation) {
   ASSERT_TRUE(fs::exists(b / "frames" / "frame_00000.png")) << "the rendered run wrote no frames";
   EXPECT_FALSE(summaryHash(a).empty());
   EXPECT_EQ(summaryHash(a), summaryHash(b));
+}
+
+// --render-phases: summary.json gets the median of each render phase, in render order; without the
+// flag there is no such key, and asking for phases of a headless run is an error.
+TEST_F(RunCommand, RenderPhasesAreReportedOnlyWhenAsked) {
+  const fs::path timed = dir_ / "timed", plain = dir_ / "plain";
+  const std::string common = " --frames 6 --width 160 --height 120 --threads 1 --error-every 0 --out '";
+  Result r = haif("run '" + kStacks + "'" + common + timed.string() + "' --render-phases");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  ASSERT_EQ(haif("run '" + kStacks + "'" + common + plain.string() + "'").exitCode, 0);
+
+  std::ifstream a(timed / "summary.json"), b(plain / "summary.json");
+  const nlohmann::ordered_json ja = nlohmann::ordered_json::parse(a), jb = nlohmann::ordered_json::parse(b);
+  EXPECT_FALSE(jb.contains("render_phase_ms_median"));
+  ASSERT_TRUE(ja.contains("render_phase_ms_median"));
+  const nlohmann::ordered_json& phases = ja["render_phase_ms_median"];
+  const std::vector<std::string> expected = {"prepare", "shadow", "scene", "sky", "resolve", "readback", "flip",
+                                             "overlay"};
+  std::vector<std::string> keys;
+  double sum = 0;
+  for (auto it = phases.begin(); it != phases.end(); ++it) {
+    keys.push_back(it.key());
+    ASSERT_TRUE(it.value().is_number()) << it.key();
+    EXPECT_GE(it.value().get<double>(), 0.0) << it.key();
+    sum += it.value().get<double>();
+  }
+  EXPECT_EQ(keys, expected) << "phases missing or out of render order";
+  EXPECT_GT(phases.value("scene", 0.0), 0.0) << "the main pass took no time";
+  // The phases are parts of each frame's render time; a glFinish per phase does not change that.
+  EXPECT_GT(sum, 0.0);
+  EXPECT_EQ(summaryHash(timed), summaryHash(plain)) << "timing the phases changed the simulation";
+
+  r = haif("run '" + kStacks + "' --no-render --render-phases --frames 2 --out '" + (dir_ / "headless").string() + "'");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--render-phases needs rendering"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "headless" / "summary.json"));
 }
 
 }  // namespace
