@@ -21,7 +21,6 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <iterator>
 
 namespace haif {
 
@@ -100,8 +99,8 @@ int commandRun(int argc, char** argv) {
   RunMetrics metrics;
   metrics.begin(world, uint64_t(frames));
   std::vector<double> renderMs;
-  // --render-phases: per phase, its time in each frame (a glFinish per phase; for profiling).
-  std::vector<std::vector<double>> phaseMs;
+  // --render-phases: per phase, its name and its time in each frame (a glFinish per phase).
+  std::vector<std::pair<std::string, std::vector<double>>> phaseMs;
   bool renderFailed = false;
 
   Progress progress("run", "step", frames);
@@ -179,10 +178,12 @@ int commandRun(int argc, char** argv) {
     }
     renderMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     if (renderPhases) {
-      const render::RenderPhaseTimes& p = renderer->lastPhaseTimes();
-      const double each[] = {p.prepare, p.shadow, p.scene, p.sky, p.resolve, p.readback, p.flip, p.overlay};
-      phaseMs.resize(std::size(each));
-      for (size_t i = 0; i < std::size(each); ++i) phaseMs[i].push_back(each[i]);
+      const auto phases = renderer->lastPhaseTimes().inOrder();
+      phaseMs.resize(phases.size());
+      for (size_t i = 0; i < phases.size(); ++i) {
+        phaseMs[i].first = phases[i].first;
+        phaseMs[i].second.push_back(phases[i].second);
+      }
     }
   };
 #else
@@ -200,10 +201,7 @@ int commandRun(int argc, char** argv) {
 #endif
   info.stateHash = world.stateHash();
   if (!renderMs.empty()) info.renderMsPerFrameMedian = quantile(renderMs, 0.5);
-  if (!phaseMs.empty()) {
-    const char* names[] = {"prepare", "shadow", "scene", "sky", "resolve", "readback", "flip", "overlay"};
-    for (size_t i = 0; i < phaseMs.size(); ++i) info.renderPhaseMsMedian.emplace_back(names[i], quantile(phaseMs[i], 0.5));
-  }
+  for (const auto& [name, ms] : phaseMs) info.renderPhaseMsMedian.emplace_back(name, quantile(ms, 0.5));
 
   if (!writeFileAtomic(outDir + "/stats.csv", statsCsv(stats), error)) return fail(error);
   if (!writeFileAtomic(outDir + "/summary.json", summaryJson(info, stats, metrics, world), error)) return fail(error);

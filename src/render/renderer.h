@@ -3,9 +3,11 @@
 // per thread (each has its own context, made current by create()/render()).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "render/frame_input.h"
@@ -43,6 +45,12 @@ struct RenderPhaseTimes {
   double readback = 0;  ///< glReadPixels
   double flip = 0;      ///< bottom-up rows to top-down
   double overlay = 0;   ///< text and charts
+
+  /// Every phase with its name, in render order (the names reports use).
+  std::array<std::pair<const char*, double>, 8> inOrder() const {
+    return {{{"prepare", prepare}, {"shadow", shadow}, {"scene", scene}, {"sky", sky}, {"resolve", resolve},
+             {"readback", readback}, {"flip", flip}, {"overlay", overlay}}};
+  }
 };
 
 class Renderer {

@@ -257,8 +257,7 @@ TEST_F(RunCommand, RenderPhasesAreReportedOnlyWhenAsked) {
   }
   EXPECT_EQ(keys, expected) << "phases missing or out of render order";
   EXPECT_GT(phases.value("scene", 0.0), 0.0) << "the main pass took no time";
-  // The phases are parts of each frame's render time; a glFinish per phase does not change that.
-  EXPECT_GT(sum, 0.0);
+  EXPECT_GT(sum, 0.0) << "no phase took any time";
   EXPECT_EQ(summaryHash(timed), summaryHash(plain)) << "timing the phases changed the simulation";
 
   r = haif("run '" + kStacks + "' --no-render --render-phases --frames 2 --out '" + (dir_ / "headless").string() + "'");
