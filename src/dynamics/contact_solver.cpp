@@ -452,11 +452,16 @@ float solveNormalRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& 
 
 double squaredChange(const ContactConstraint& c) { return rowsChange(c); }
 
-SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias) {
+namespace {
+
+template <bool Restart>
+SweepResult sweep(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias) {
   float residual = 0.0f;
   double change = 0.0;
   for (size_t k = 0; k < n; ++k) {
     ContactConstraint& c = cs[k];
+    if constexpr (Restart)
+      for (int r = 0; r < ContactConstraint::kRows; ++r) c.direction[r] = c.delta[r];
     if (c.count == 0) continue;
     // Static and kinematic bodies are read (their velocity is given) but never written, so
     // islands that share a static body can be solved concurrently.
@@ -469,6 +474,13 @@ SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, f
     storeVelocities(bodies, c, va, wa, vb, wb);
   }
   return {residual, change};
+}
+
+}  // namespace
+
+SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias,
+                           bool restartDirection) {
+  return restartDirection ? sweep<true>(bodies, cs, n, omega, useBias) : sweep<false>(bodies, cs, n, omega, useBias);
 }
 
 void startDirection(ContactConstraint* cs, size_t n) {

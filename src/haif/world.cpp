@@ -440,7 +440,7 @@ Vec3 World::upDirection() const {
 // One sweep over island k: its contacts, then its joints. Joints after contacts: the joint tree,
 // solved exactly, ends each sweep intact. The other way round crates landing on a rope bridge left
 // their joints open, and Baumgarte turned that into a bounce.
-SweepResult World::sweepIsland(uint32_t k, bool useBias) {
+SweepResult World::sweepIsland(uint32_t k, bool useBias, bool restartDirection) {
   const Island& isl = islands_.islands[k];
   ContactConstraint* cs = constraints_.data() + isl.firstContact;
   const float omega = settings_.omega;
@@ -449,11 +449,14 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias) {
     r = solveChainIteration(bodies_, cs, chainLinks_.data() + isl.firstContact, isl.contactCount, omega, useBias);
   } else if (isWide(k)) {
     const LaneBatches lb = lanesOf(k);
+    if (restartDirection) startDirectionLanes(cs, isl.contactCount, lb);
     r = forEachStrip(k, [&](uint32_t b, uint32_t e) {
       return solveIterationLanes(bodies_, cs + b, e - b, lb.from(b), omega, useBias);
     });
   } else {
-    r = forEachStrip(k, [&](uint32_t b, uint32_t e) { return solveIteration(bodies_, cs + b, e - b, omega, useBias); });
+    r = forEachStrip(k, [&](uint32_t b, uint32_t e) {
+      return solveIteration(bodies_, cs + b, e - b, omega, useBias, restartDirection);
+    });
   }
   if (isl.jointCount > 0) {
     JointTree* tree = settings_.joints.treeSolve ? &jointTrees_[k] : nullptr;
@@ -556,14 +559,15 @@ void World::solveIslands(int iterations) {
     // Momentum on the contacts of joint-free islands; a joint tree is solved exactly every sweep.
     // A chain is solved exactly each sweep: nothing for momentum to carry.
     const bool cg = settings_.accelerate && isl.jointCount == 0 && !isChain_[k];
-    const uint32_t n = isl.contactCount;
     const bool wide = isWide(k);
     const LaneBatches lb = wide ? lanesOf(k) : LaneBatches{};
     double lastChange = 0.0;
     int it = 0;
     float residual = 0.0f;
+    bool restart = false;  // the next sweep starts the direction from this sweep's change
     while (it < iterations) {
-      const SweepResult sweep = sweepIsland(k, true);
+      const SweepResult sweep = sweepIsland(k, true, restart);
+      restart = false;
       residual = sweep.residual;
       ++it;
       // Converged islands stop: precision nobody can see is not paid for. A chain stops as soon as
@@ -577,9 +581,9 @@ void World::solveIslands(int iterations) {
       }
       const double change = sweep.change;
       if (it == 1 || lastChange <= 0.0 || change > lastChange) {
-        // First direction, or a restart: the last step overshot.
-        if (wide) startDirectionLanes(cs, n, lb);
-        else startDirection(cs, n);
+        // First direction, or a restart: the last step overshot. The next sweep copies it, before
+        // it overwrites the changes, and no momentum step comes before that sweep.
+        restart = true;
       } else {
         const float beta = float(change / lastChange);
         forEachStrip(k, [&](uint32_t b, uint32_t e) {

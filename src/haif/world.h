@@ -139,7 +139,9 @@ class World {
   template <class F> void forEachContactChunk(uint32_t island, uint32_t grain, F&& f);
   /// Against gravity (+y without gravity): what top-down order and strips are measured along.
   Vec3 upDirection() const;
-  SweepResult sweepIsland(uint32_t island, bool useBias);
+  /// `restartDirection`: the island's momentum direction restarts from the last sweep's change
+  /// (see solveIteration); only for joint-free islands swept plainly or wide.
+  SweepResult sweepIsland(uint32_t island, bool useBias, bool restartDirection = false);
   void shareSpareIterations(int iterations);
   void relaxIslands(int relaxIterations);
   void summariseIterations();

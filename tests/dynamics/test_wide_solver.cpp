@@ -153,5 +153,45 @@ TEST(WideSolver, PartialBatchLeavesUnusedLanesAndEmptyManifoldsAlone) {
   EXPECT_EQ(wide.bodies.v[0], Vec3::Zero());  // the static ground is never written
 }
 
+
+// The scalar sweep can restart the momentum direction itself (solveIteration's restartDirection),
+// in place of a startDirection pass before it: the same numbers, bit for bit, on every branch above.
+TEST(ScalarSolver, RestartInTheSweepEqualsAStartDirectionPass) {
+  EightBoxes passScene, foldScene;
+  SolverParams sp;
+  sp.warmStart = false;
+  ContactConstraint pass[kLanes], fold[kLanes];
+  for (int l = 0; l < kLanes; ++l) {
+    prepareContact(passScene.bodies, passScene.contacts[l], uint32_t(l), sp, pass[l]);
+    prepareContact(foldScene.bodies, foldScene.contacts[l], uint32_t(l), sp, fold[l]);
+  }
+  // Sweep, restart, sweep, momentum step, sweep: as World runs the main sweeps.
+  const SweepResult p1 = solveIteration(passScene.bodies, pass, kLanes, 1.0f, true);
+  startDirection(pass, kLanes);
+  const SweepResult p2 = solveIteration(passScene.bodies, pass, kLanes, 1.0f, true);
+  const SweepResult f1 = solveIteration(foldScene.bodies, fold, kLanes, 1.0f, true);
+  const SweepResult f2 = solveIteration(foldScene.bodies, fold, kLanes, 1.0f, true, /*restartDirection=*/true);
+  EXPECT_EQ(p1.change, f1.change);
+  EXPECT_EQ(p2.change, f2.change);
+  bool anyDirection = false;
+  for (int l = 0; l < kLanes; ++l)
+    for (int r = 0; r < ContactConstraint::kRows; ++r) {
+      EXPECT_EQ(fold[l].direction[r], pass[l].direction[r]) << "lane " << l << " row " << r;
+      anyDirection |= fold[l].direction[r] != 0.0f;
+    }
+  EXPECT_TRUE(anyDirection);  // the first sweep changed impulses: the restart has something to carry
+  const float beta = float(p2.change / p1.change);
+  accelerate(passScene.bodies, pass, kLanes, beta);
+  accelerate(foldScene.bodies, fold, kLanes, beta);
+  solveIteration(passScene.bodies, pass, kLanes, 1.0f, true);
+  solveIteration(foldScene.bodies, fold, kLanes, 1.0f, true);
+  for (uint32_t b = 1; b < passScene.bodies.size(); ++b) {
+    EXPECT_EQ(foldScene.bodies.v[b], passScene.bodies.v[b]) << "body " << b;
+    EXPECT_EQ(foldScene.bodies.w[b], passScene.bodies.w[b]) << "body " << b;
+  }
+  for (int l = 0; l < kLanes; ++l)
+    for (int i = 0; i < pass[l].count; ++i) EXPECT_EQ(fold[l].points[i].normalImpulse, pass[l].points[i].normalImpulse);
+}
+
 }  // namespace
 }  // namespace haif
