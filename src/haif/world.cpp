@@ -807,6 +807,12 @@ void World::estimateColdImpulses() {
     const uint32_t u = slope > 0.0f ? c.b : c.a;
     return bodies_.isAwakeDynamic(u) ? int64_t(u) : -1;
   };
+  // Cold: no impulse to warm start from, and the bodies nearly at rest relative to each other.
+  auto isCold = [&](const Contact& c) {
+    for (int i = 0; i < c.manifold.count; ++i)
+      if (c.normalImpulse[i] != 0.0f) return false;
+    return std::fabs(c.manifold.points[0].normal.dot(bodies_.v[c.b] - bodies_.v[c.a])) <= restSpeed;
+  };
   // Islands share no dynamic body (a static lower body receives nothing): they run concurrently.
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
   parallelFor(m, 4, [&](uint32_t begin, uint32_t end) {
@@ -814,11 +820,19 @@ void World::estimateColdImpulses() {
       const Island& isl = islands_.islands[k];
       const uint32_t* bodies = islands_.bodies.data() + isl.firstBody;
       const uint32_t* contacts = islands_.contacts.data() + isl.firstContact;
+      float slope;
+      // A pile that has settled has no cold support left: its loads need not be added up (in
+      // large_pyramid that was 0.4 ms a step, serial on its one island).
+      bool anyCold = false;
+      for (uint32_t j = 0; j < isl.contactCount && !anyCold; ++j) {
+        const Contact& c = contacts_[contacts[j]];
+        anyCold = c.manifold.count > 0 && c.normalImpulse[0] == 0.0f && isCold(c) && upper(c, slope) >= 0;
+      }
+      if (!anyCold) continue;
       for (uint32_t j = 0; j < isl.bodyCount; ++j) {
         carried_[bodies[j]] = 0.0f;
         supports_[bodies[j]] = 0;
       }
-      float slope;
       for (uint32_t j = 0; j < isl.contactCount; ++j) {
         const int64_t u = upper(contacts_[contacts[j]], slope);
         if (u >= 0 && supports_[u] < 0xffff) ++supports_[u];
@@ -831,10 +845,7 @@ void World::estimateColdImpulses() {
         const uint32_t lower = uint32_t(u) == c.a ? c.b : c.a;
         const float share = (bodies_.mass[u] * g * dt + carried_[u]) / float(supports_[u]);
         if (bodies_.isAwakeDynamic(lower)) carried_[lower] += share;
-        bool cold = true;
-        for (int i = 0; i < c.manifold.count; ++i) cold = cold && c.normalImpulse[i] == 0.0f;
-        const float vn = std::fabs(c.manifold.points[0].normal.dot(bodies_.v[c.b] - bodies_.v[c.a]));
-        if (!cold || vn > restSpeed) continue;
+        if (!isCold(c)) continue;
         const float perPoint = share / (std::fabs(slope) * float(c.manifold.count));
         for (int i = 0; i < c.manifold.count; ++i) c.normalImpulse[i] = perPoint;
       }
