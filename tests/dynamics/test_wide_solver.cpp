@@ -54,6 +54,15 @@ struct EightBoxes {
       }
     }
   }
+  /// The rows of the first `lanes` contacts, from cold (no warm start unless `sp` says so).
+  void prepare(ContactConstraint* cs, int lanes = kLanes, SolverParams sp = coldParams()) const {
+    for (int l = 0; l < lanes; ++l) prepareContact(bodies, contacts[l], uint32_t(l), sp, cs[l]);
+  }
+  static SolverParams coldParams() {
+    SolverParams sp;
+    sp.warmStart = false;
+    return sp;
+  }
 };
 
 void expectNear(const Vec3& a, const Vec3& b, const char* what, int body) {
@@ -64,13 +73,9 @@ void expectNear(const Vec3& a, const Vec3& b, const char* what, int body) {
 
 TEST(WideSolver, SweepsAndMomentumMatchTheScalarSolver) {
   EightBoxes scalar, wide;
-  SolverParams sp;
-  sp.warmStart = false;
   ContactConstraint cs[kLanes], cw[kLanes];
-  for (int l = 0; l < kLanes; ++l) {
-    prepareContact(scalar.bodies, scalar.contacts[l], uint32_t(l), sp, cs[l]);
-    prepareContact(wide.bodies, wide.contacts[l], uint32_t(l), sp, cw[l]);
-  }
+  scalar.prepare(cs);
+  wide.prepare(cw);
   WideContactBatch w;
   packWide(cw, kLanes, w);
 
@@ -129,13 +134,10 @@ TEST(WideSolver, PartialBatchLeavesUnusedLanesAndEmptyManifoldsAlone) {
   EightBoxes scalar, wide;
   scalar.contacts[2].manifold.count = 0;  // separated this step: skipped by a sweep
   wide.contacts[2].manifold.count = 0;
-  SolverParams sp;
   ContactConstraint cs[kLanes], cw[kLanes];
   constexpr int lanes = 5;
-  for (int l = 0; l < lanes; ++l) {
-    prepareContact(scalar.bodies, scalar.contacts[l], uint32_t(l), sp, cs[l]);
-    prepareContact(wide.bodies, wide.contacts[l], uint32_t(l), sp, cw[l]);
-  }
+  scalar.prepare(cs, lanes, SolverParams{});  // warm started
+  wide.prepare(cw, lanes, SolverParams{});
   WideContactBatch w;
   packWide(cw, lanes, w);
   solveIteration(scalar.bodies, cs, lanes, 1.0f, true);
@@ -158,13 +160,9 @@ TEST(WideSolver, PartialBatchLeavesUnusedLanesAndEmptyManifoldsAlone) {
 // in place of a startDirection pass before it: the same numbers, bit for bit, on every branch above.
 TEST(ScalarSolver, RestartInTheSweepEqualsAStartDirectionPass) {
   EightBoxes passScene, foldScene;
-  SolverParams sp;
-  sp.warmStart = false;
   ContactConstraint pass[kLanes], fold[kLanes];
-  for (int l = 0; l < kLanes; ++l) {
-    prepareContact(passScene.bodies, passScene.contacts[l], uint32_t(l), sp, pass[l]);
-    prepareContact(foldScene.bodies, foldScene.contacts[l], uint32_t(l), sp, fold[l]);
-  }
+  passScene.prepare(pass);
+  foldScene.prepare(fold);
   // Sweep, restart, sweep, momentum step, sweep: as World runs the main sweeps.
   const SweepResult p1 = solveIteration(passScene.bodies, pass, kLanes, 1.0f, true);
   startDirection(pass, kLanes);
