@@ -826,7 +826,7 @@ void World::estimateColdImpulses() {
       bool anyCold = false;
       for (uint32_t j = 0; j < isl.contactCount && !anyCold; ++j) {
         const Contact& c = contacts_[contacts[j]];
-        anyCold = c.manifold.count > 0 && c.normalImpulse[0] == 0.0f && isCold(c) && upper(c, slope) >= 0;
+        anyCold = c.manifold.count > 0 && isCold(c) && upper(c, slope) >= 0;
       }
       if (!anyCold) continue;
       for (uint32_t j = 0; j < isl.bodyCount; ++j) {

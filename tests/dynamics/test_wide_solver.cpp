@@ -155,7 +155,6 @@ TEST(WideSolver, PartialBatchLeavesUnusedLanesAndEmptyManifoldsAlone) {
   EXPECT_EQ(wide.bodies.v[0], Vec3::Zero());  // the static ground is never written
 }
 
-
 // The scalar sweep can restart the momentum direction itself (solveIteration's restartDirection),
 // in place of a startDirection pass before it: the same numbers, bit for bit, on every branch above.
 TEST(ScalarSolver, RestartInTheSweepEqualsAStartDirectionPass) {
