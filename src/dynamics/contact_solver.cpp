@@ -454,14 +454,19 @@ double squaredChange(const ContactConstraint& c) { return rowsChange(c); }
 
 namespace {
 
+// A momentum direction starts from the constraint's last change (startDirection, and a sweep that
+// restarts it).
+inline void restartDirectionOf(ContactConstraint& c) {
+  for (int r = 0; r < ContactConstraint::kRows; ++r) c.direction[r] = c.delta[r];
+}
+
 template <bool Restart>
 SweepResult sweep(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias) {
   float residual = 0.0f;
   double change = 0.0;
   for (size_t k = 0; k < n; ++k) {
     ContactConstraint& c = cs[k];
-    if constexpr (Restart)
-      for (int r = 0; r < ContactConstraint::kRows; ++r) c.direction[r] = c.delta[r];
+    if constexpr (Restart) restartDirectionOf(c);
     if (c.count == 0) continue;
     // Static and kinematic bodies are read (their velocity is given) but never written, so
     // islands that share a static body can be solved concurrently.
@@ -484,8 +489,7 @@ SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, f
 }
 
 void startDirection(ContactConstraint* cs, size_t n) {
-  for (size_t k = 0; k < n; ++k)
-    for (int r = 0; r < ContactConstraint::kRows; ++r) cs[k].direction[r] = cs[k].delta[r];
+  for (size_t k = 0; k < n; ++k) restartDirectionOf(cs[k]);
 }
 
 void accelerate(BodyStore& bodies, ContactConstraint* cs, size_t n, float beta) {
