@@ -179,11 +179,9 @@ int commandRun(int argc, char** argv) {
     renderMs.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
     if (renderPhases) {
       const auto phases = renderer->lastPhaseTimes().inOrder();
-      phaseMs.resize(phases.size());
-      for (size_t i = 0; i < phases.size(); ++i) {
-        phaseMs[i].first = phases[i].first;
-        phaseMs[i].second.push_back(phases[i].second);
-      }
+      if (phaseMs.empty())  // the names once; each frame adds its times
+        for (const auto& phase : phases) phaseMs.emplace_back(phase.first, std::vector<double>{});
+      for (size_t i = 0; i < phases.size(); ++i) phaseMs[i].second.push_back(phases[i].second);
     }
   };
 #else
