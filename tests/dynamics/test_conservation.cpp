@@ -116,7 +116,7 @@ TEST(Conservation, ThinCapsuleTumbleDoesNotSpinUp) {
     worstL = std::max(worstL, rel(angularMomentum(w, b), L0));
   }
   EXPECT_LT(worstGain, 1e-3) << "speed " << w.bodies().w[b].norm() << " rad/s";
-  EXPECT_LT(worstL, 1e-4);
+  EXPECT_LT(worstL, 5e-5);  // 2e-5 with w taken from L in the body frame; 6e-5 before
 }
 
 // Disabled: known defect, see the issue 2 note. The relax sweeps apply impulses after positions moved,
