@@ -6,13 +6,29 @@
 
 namespace haif {
 
-void IslandBuilder::build(const BodyStore& bodies, const std::vector<Contact>& contacts,
+void IslandBuilder::build(const BodyStore& bodies, const ContactEdge* contacts, uint32_t contactCount,
                           const std::vector<Joint>& joints, IslandSet& out) {
   const uint32_t n = static_cast<uint32_t>(bodies.size());
+  const uint32_t nc = contactCount;
   parent_.resize(n);
   for (uint32_t i = 0; i < n; ++i) parent_[i] = i;
-  for (const Contact& c : contacts) {
-    if (c.touching() && bodies.isAwakeDynamic(c.a) && bodies.isAwakeDynamic(c.b)) unite(c.a, c.b);
+  // Unite, and keep what the later passes need per contact.
+  contactBody_.resize(nc);
+  contactRows_.resize(nc);
+  out.touchingContacts = out.contactPoints = 0;
+  for (uint32_t ci = 0; ci < nc; ++ci) {
+    const ContactEdge& c = contacts[ci];
+    uint32_t body = kNoBody;
+    if (c.count > 0) {
+      ++out.touchingContacts;
+      out.contactPoints += c.count;
+      const bool dynA = bodies.isAwakeDynamic(c.a), dynB = bodies.isAwakeDynamic(c.b);
+      if (dynA && dynB) unite(c.a, c.b);
+      // A contact belongs to the island of its (first) awake dynamic body.
+      body = dynA ? c.a : dynB ? c.b : kNoBody;
+    }
+    contactBody_[ci] = body;
+    contactRows_[ci] = body == kNoBody ? 0 : solverRowsFor(int(c.count));
   }
   auto activeEnd = [&](uint32_t i) { return i != kWorldBody && bodies.isAwakeDynamic(i); };
   for (const Joint& j : joints)
@@ -20,32 +36,32 @@ void IslandBuilder::build(const BodyStore& bodies, const std::vector<Contact>& c
 
   // Number the islands by their smallest body id (the root), in ascending order.
   islandOfRoot_.assign(n, -1);
+  islandOfBody_.resize(n);
   unsorted_.clear();
   for (uint32_t i = 0; i < n; ++i) {
+    islandOfBody_[i] = -1;
     if (!bodies.isAwakeDynamic(i)) continue;
     const uint32_t r = find(i);
     if (islandOfRoot_[r] < 0) {
       islandOfRoot_[r] = static_cast<int32_t>(unsorted_.size());
       unsorted_.emplace_back();
     }
+    islandOfBody_[i] = islandOfRoot_[r];
     ++unsorted_[islandOfRoot_[r]].bodyCount;
   }
-  auto islandOfContact = [&](const Contact& c) -> int32_t {
-    if (!c.touching()) return -1;
-    if (bodies.isAwakeDynamic(c.a)) return islandOfRoot_[find(c.a)];
-    if (bodies.isAwakeDynamic(c.b)) return islandOfRoot_[find(c.b)];
-    return -1;
+  auto islandOfContact = [&](uint32_t ci) -> int32_t {
+    return contactBody_[ci] == kNoBody ? -1 : islandOfBody_[contactBody_[ci]];
   };
-  for (const Contact& c : contacts) {
-    const int32_t k = islandOfContact(c);
+  for (uint32_t ci = 0; ci < nc; ++ci) {
+    const int32_t k = islandOfContact(ci);
     if (k < 0) continue;
     ++unsorted_[k].contactCount;
-    unsorted_[k].rows += solverRowsFor(c.manifold.count);
+    unsorted_[k].rows += contactRows_[ci];
   }
   auto islandOfJoint = [&](const Joint& j) -> int32_t {
     if (j.broken) return -1;
-    if (activeEnd(j.def.bodyA)) return islandOfRoot_[find(j.def.bodyA)];
-    if (activeEnd(j.def.bodyB)) return islandOfRoot_[find(j.def.bodyB)];
+    if (activeEnd(j.def.bodyA)) return islandOfBody_[j.def.bodyA];
+    if (activeEnd(j.def.bodyB)) return islandOfBody_[j.def.bodyB];
     return -1;
   };
   for (const Joint& j : joints) {
@@ -89,11 +105,10 @@ void IslandBuilder::build(const BodyStore& bodies, const std::vector<Contact>& c
   out.contacts.resize(fc);
   out.joints.resize(fj);
   for (uint32_t i = 0; i < n; ++i) {
-    if (!bodies.isAwakeDynamic(i)) continue;
-    out.bodies[cursorBody_[islandOfRoot_[find(i)]]++] = i;
+    if (islandOfBody_[i] >= 0) out.bodies[cursorBody_[islandOfBody_[i]]++] = i;
   }
-  for (uint32_t ci = 0; ci < contacts.size(); ++ci) {
-    const int32_t k = islandOfContact(contacts[ci]);
+  for (uint32_t ci = 0; ci < nc; ++ci) {
+    const int32_t k = islandOfContact(ci);
     if (k >= 0) out.contacts[cursorContact_[k]++] = ci;
   }
   for (uint32_t ji = 0; ji < joints.size(); ++ji) {

@@ -4,7 +4,6 @@
 #pragma once
 
 #include "core/body_store.h"
-#include "dynamics/contact.h"
 #include "dynamics/joint.h"
 
 #include <cstdint>
@@ -19,6 +18,14 @@ struct Island {
   uint32_t firstJoint = 0, jointCount = 0;      ///< range in IslandSet::joints
 };
 
+/// What island building needs of a contact, kept by the narrow phase in a flat array: the Contact
+/// itself is ~0.5 KB, and passes over those were most of the island stage's time.
+struct ContactEdge {
+  uint32_t a = 0, b = 0;  ///< body ids
+  uint32_t count = 0;     ///< manifold points (0: not touching)
+  bool unloaded = true;   ///< every point's normal impulse is zero (nothing to warm start from)
+};
+
 struct IslandSet {
   std::vector<Island> islands;    ///< largest (most rows) first
   std::vector<uint32_t> bodies;   ///< body ids grouped by island, ascending within an island
@@ -27,19 +34,18 @@ struct IslandSet {
   uint32_t totalRows = 0;
   uint32_t largestRows = 0;
   uint32_t largestBodies = 0;
+  uint32_t touchingContacts = 0;  ///< contacts with points (awake or not), counted in the same pass
+  uint32_t contactPoints = 0;     ///< their points
 };
 
 /// Union-find island builder; keeps its scratch buffers between steps (no allocation once warm).
 class IslandBuilder {
  public:
-  /// A contact joins its bodies when it has points and both bodies are awake dynamic ones.
-  void build(const BodyStore& bodies, const std::vector<Contact>& contacts, IslandSet& out) {
-    build(bodies, contacts, {}, out);
-  }
-  /// Joints are edges like contacts: an unbroken joint between two awake dynamic bodies joins them; a
-  /// joint to the world, a static or a kinematic body belongs to the island of its dynamic body.
-  void build(const BodyStore& bodies, const std::vector<Contact>& contacts, const std::vector<Joint>& joints,
-             IslandSet& out);
+  /// A contact joins its bodies when it has points and both bodies are awake dynamic ones. Joints
+  /// are edges like contacts: an unbroken joint between two awake dynamic bodies joins them; a joint
+  /// to the world, a static or a kinematic body belongs to the island of its dynamic body.
+  void build(const BodyStore& bodies, const ContactEdge* contacts, uint32_t contactCount,
+             const std::vector<Joint>& joints, IslandSet& out);
 
  private:
   uint32_t find(uint32_t x) {
@@ -57,8 +63,12 @@ class IslandBuilder {
     parent_[b] = a;
   }
 
+  static constexpr uint32_t kNoBody = ~0u;
+
   std::vector<uint32_t> parent_;
-  std::vector<int32_t> islandOfRoot_;
+  std::vector<int32_t> islandOfRoot_, islandOfBody_;  // island (in numbering order) of each root / body
+  std::vector<uint32_t> contactBody_;                  // the awake dynamic body a contact belongs by, or kNoBody
+  std::vector<uint32_t> contactRows_;                  // its solver rows
   std::vector<uint32_t> cursorBody_, cursorContact_, cursorJoint_;
   std::vector<uint32_t> order_;
   std::vector<Island> unsorted_;

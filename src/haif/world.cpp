@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <algorithm>
 #include <stdexcept>
 
@@ -276,10 +277,23 @@ void World::updateBroadPhase() {
   stats_.newPairs = created;
 }
 
+namespace {
+
+// What the stages after the narrow phase need of a contact, copied while it is in cache.
+inline void noteEdge(const Contact& c, ContactEdge& edge) {
+  edge.count = uint32_t(c.manifold.count);
+  bool unloaded = true;
+  for (int i = 0; i < c.manifold.count; ++i) unloaded &= c.normalImpulse[i] == 0.0f;
+  edge.unloaded = unloaded;
+}
+
+}  // namespace
+
 void World::narrowPhase() {
   const uint32_t n = static_cast<uint32_t>(contacts_.size());
   wakeFlag_.resize(n);
   reusedFlag_.assign(n, 0);
+  contactEdges_.resize(n);
   auto active = [&](uint32_t i) {
     return bodies_.kind[i] == BodyKind::Kinematic || (bodies_.kind[i] == BodyKind::Dynamic && !bodies_.asleep[i]);
   };
@@ -290,6 +304,10 @@ void World::narrowPhase() {
     for (uint32_t ci = begin; ci < end; ++ci) {
       Contact& c = contacts_[ci];
       wakeFlag_[ci] = 0;
+      ContactEdge& edge = contactEdges_[ci];
+      edge.a = c.a;
+      edge.b = c.b;
+      noteEdge(c, edge);
       if (!active(c.a) && !active(c.b)) continue;  // sleeping or static on both sides: keep the manifold
       const Transform &xa = bodies_.xf[c.a], &xb = bodies_.xf[c.b];
       // Speculative margin: as far as the pair closes in one step, uncapped, so a small fast body meets a
@@ -302,6 +320,7 @@ void World::narrowPhase() {
       if (settings_.reuseManifolds && rel < restingClosing &&
           refreshManifold(c.cache, xa, xb, reuseLimits, c.manifold)) {
         reusedFlag_[ci] = 1;
+        noteEdge(c, edge);
         continue;  // same points and ids: the impulses stay where they are
       }
       const Manifold old = c.manifold;
@@ -334,27 +353,31 @@ void World::narrowPhase() {
         c.twistImpulse = 0.0f;
       }
       if ((old.count > 0) != (c.manifold.count > 0)) wakeFlag_[ci] = 1;
+      noteEdge(c, edge);
     }
   });
 
   for (const uint8_t reused : reusedFlag_) stats_.manifoldsReused += reused;
   // Destroy contacts whose fat boxes separated; wake sleeping bodies whose contacts changed.
+  // It reads the flat edges, not the contacts (a pass over those took ~0.4 ms in many_pyramids).
   for (uint32_t ci = 0; ci < contacts_.size();) {
-    Contact& c = contacts_[ci];
+    const ContactEdge c = contactEdges_[ci];
     if (wakeFlag_[ci]) {
       wake(c.a);
       wake(c.b);
     }
-    if (!c.touching() && !broadPhase_.fatOverlap(c.a, c.b)) {
+    if (c.count == 0 && !broadPhase_.fatOverlap(c.a, c.b)) {
       pairs_.erase(PairMap::key(c.a, c.b));
       const uint32_t last = static_cast<uint32_t>(contacts_.size() - 1);
       if (ci != last) {
         contacts_[ci] = contacts_[last];
         wakeFlag_[ci] = wakeFlag_[last];
+        contactEdges_[ci] = contactEdges_[last];
         pairs_.set(PairMap::key(contacts_[ci].a, contacts_[ci].b), ci);
       }
       contacts_.pop_back();
       wakeFlag_.pop_back();
+      contactEdges_.pop_back();
       continue;
     }
     ++ci;
@@ -758,30 +781,46 @@ void World::summariseIterations() {
 // Gauss-Seidel order matters for stacking: solving the highest contacts first carries the weight
 // of a stack down to the ground within one sweep (bottom-up needs one sweep per layer). Against
 // gravity, a 100-layer pyramid at 10 iterations dropped 1.6 m on average bottom-up, 0.08 m top-down.
+namespace {
+
+// One integer per contact that sorts as the top-down order does: height descending, then index
+// ascending (a total order, so deterministic). Sorting these directly is ~2x faster than sorting
+// indices through a comparison that looks the heights up.
+inline uint64_t topDownKey(float height, uint32_t index) {
+  height += 0.0f;  // -0 becomes +0: equal heights tie, as they compare
+  uint32_t u;
+  std::memcpy(&u, &height, sizeof u);
+  u = (u & 0x80000000u) ? ~u : (u | 0x80000000u);  // grows with the height
+  return (uint64_t(~u) << 32) | index;
+}
+
+}  // namespace
+
 void World::orderContactsTopDown() {
   const Vec3 up = upDirection();
   contactHeight_.resize(contacts_.size());
+  orderKeys_.resize(islands_.contacts.size());
   const uint32_t* ids = islands_.contacts.data();
   parallelFor(uint32_t(islands_.contacts.size()), 4096, [&](uint32_t begin, uint32_t end) {
     for (uint32_t j = begin; j < end; ++j) {
-      const Contact& c = contacts_[ids[j]];
-      contactHeight_[ids[j]] = up.dot(bodies_.xf[c.a].p + bodies_.xf[c.b].p);
+      const ContactEdge& c = contactEdges_[ids[j]];
+      const float h = up.dot(bodies_.xf[c.a].p + bodies_.xf[c.b].p);
+      contactHeight_[ids[j]] = h;
+      orderKeys_[j] = topDownKey(h, ids[j]);
     }
   });
-  auto higher = [&](uint32_t x, uint32_t y) {
-    const float hx = contactHeight_[x], hy = contactHeight_[y];
-    return hx > hy || (hx == hy && x < y);  // index breaks ties: a total order, so deterministic
-  };
   // Islands own disjoint ranges: sorted concurrently; a giant island is sorted in parallel itself.
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
   parallelFor(m, 4, [&](uint32_t begin, uint32_t end) {
     for (uint32_t k = begin; k < end; ++k) {
       const Island& isl = islands_.islands[k];
-      uint32_t* first = islands_.contacts.data() + isl.firstContact;
+      uint64_t* first = orderKeys_.data() + isl.firstContact;
       if (arena_ && isl.contactCount >= kParallelSortContacts)
-        arena_->execute([&] { tbb::parallel_sort(first, first + isl.contactCount, higher); });
+        arena_->execute([&] { tbb::parallel_sort(first, first + isl.contactCount); });
       else
-        std::sort(first, first + isl.contactCount, higher);
+        std::sort(first, first + isl.contactCount);
+      uint32_t* out = islands_.contacts.data() + isl.firstContact;
+      for (uint32_t j = 0; j < isl.contactCount; ++j) out[j] = uint32_t(first[j]);
     }
   });
 }
@@ -824,7 +863,9 @@ void World::estimateColdImpulses() {
       // A pile that has settled has no cold support left: its loads need not be added up (in
       // large_pyramid that was 0.4 ms a step, serial on its one island).
       bool anyCold = false;
+      // The flat edges say which contacts carry no impulse; only those are read.
       for (uint32_t j = 0; j < isl.contactCount && !anyCold; ++j) {
+        if (!contactEdges_[contacts[j]].unloaded) continue;
         const Contact& c = contacts_[contacts[j]];
         anyCold = c.manifold.count > 0 && isCold(c) && upper(c, slope) >= 0;
       }
@@ -914,7 +955,7 @@ void World::step() {
     stats_.stages |= kStageJoints;
     wakeJointedBodies();
   }
-  islandBuilder_.build(bodies_, contacts_, joints_, islands_);
+  islandBuilder_.build(bodies_, contactEdges_.data(), uint32_t(contactEdges_.size()), joints_, islands_);
   if (settings_.topDownOrder) orderContactsTopDown();
   if (settings_.coldStartFromWeight && settings_.warmStart && settings_.topDownOrder) estimateColdImpulses();
   splitGiantIslands();
@@ -934,7 +975,7 @@ void World::step() {
   ctx.largestRows = islands_.largestRows;
   ctx.islands = static_cast<uint32_t>(islands_.islands.size());
   ctx.bodies = static_cast<uint32_t>(islands_.bodies.size());
-  for (const Contact& c : contacts_) ctx.contactPoints += uint32_t(c.manifold.count);
+  ctx.contactPoints = islands_.contactPoints;
   ctx.threads = settings_.threads;
   const int iterations = std::clamp(controller_->choose(ctx), controller_->iMin, controller_->iMax);
   stats_.iterationsChosen = iterations;
@@ -978,11 +1019,8 @@ void World::step() {
     if (bodies_.asleep[i]) ++stats_.sleepingBodies;
     else ++stats_.awakeBodies;
   }
-  for (const Contact& c : contacts_) {
-    if (!c.touching()) continue;
-    ++stats_.contacts;
-    stats_.contactPoints += uint32_t(c.manifold.count);
-  }
+  stats_.contacts = islands_.touchingContacts;  // counted while the islands were built
+  stats_.contactPoints = islands_.contactPoints;
   stats_.islands = static_cast<uint32_t>(islands_.islands.size());
   stats_.largestIsland = islands_.largestBodies;
   stats_.totalMs = msSince(t0) - measurementMs_;

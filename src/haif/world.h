@@ -177,11 +177,13 @@ class World {
   std::vector<Contact> contacts_;
   std::vector<uint8_t> wakeFlag_;     // per contact: touching state changed this step
   std::vector<uint8_t> reusedFlag_;   // per contact: its manifold was reused this step
+  std::vector<ContactEdge> contactEdges_;  // per contact: its bodies and point count, from the narrow phase on
 
   IslandBuilder islandBuilder_;
   IslandSet islands_;
   std::vector<int32_t> islandOfBody_;
   std::vector<float> contactHeight_;  // solve-order key per contact
+  std::vector<uint64_t> orderKeys_;   // the top-down sort's keys, in island order (see topDownKey)
   std::vector<float> carried_;        // per body: weight impulse (N s) it carries this step, for cold contacts
   std::vector<uint16_t> supports_;    // per body: contacts holding it up
   std::vector<ContactConstraint> constraints_;

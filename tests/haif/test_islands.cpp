@@ -53,6 +53,24 @@ void checkPartition(const World& w) {
   }
 }
 
+// The step's contact counts and the islands' contact lists agree with the contacts themselves.
+void checkContacts(const World& w) {
+  uint32_t touching = 0, points = 0;
+  for (const Contact& c : w.contacts()) {
+    if (!c.touching()) continue;
+    ++touching;
+    points += uint32_t(c.manifold.count);
+  }
+  EXPECT_EQ(w.lastStats().contacts, touching);
+  EXPECT_EQ(w.lastStats().contactPoints, points);
+  std::set<uint32_t> listed;
+  for (uint32_t ci : w.islands().contacts) {
+    ASSERT_LT(ci, w.contacts().size());
+    EXPECT_TRUE(listed.insert(ci).second) << "contact " << ci << " listed twice";
+    EXPECT_TRUE(w.contacts()[ci].touching()) << "contact " << ci << " listed without points";
+  }
+}
+
 TEST(Islands, TwoStacksOnSharedGroundAreTwoIslands) {
   World w;
   const uint32_t ground = addGround(w);
@@ -67,6 +85,7 @@ TEST(Islands, TwoStacksOnSharedGroundAreTwoIslands) {
   EXPECT_EQ(w.lastStats().islands, 2u);
   EXPECT_EQ(w.lastStats().largestIsland, 4u);
   checkPartition(w);
+  checkContacts(w);
 }
 
 TEST(Islands, ChainOfTouchingBoxesIsOneIsland) {
@@ -78,6 +97,7 @@ TEST(Islands, ChainOfTouchingBoxesIsOneIsland) {
   ASSERT_EQ(w.islands().islands.size(), 1u);
   EXPECT_EQ(w.islands().islands[0].bodyCount, 8u);
   checkPartition(w);
+  checkContacts(w);
 }
 
 TEST(Islands, LargestFirstAndLoneBodiesCounted) {
@@ -101,6 +121,7 @@ TEST(Islands, LargestFirstAndLoneBodiesCounted) {
   for (const Island& isl : is.islands) total += isl.rows;
   EXPECT_EQ(is.totalRows, total);
   checkPartition(w);
+  checkContacts(w);
 }
 
 TEST(Islands, BoxBridgingTwoStacksMergesThem) {
@@ -117,6 +138,32 @@ TEST(Islands, BoxBridgingTwoStacksMergesThem) {
   for (int s = 0; s < 5; ++s) w.step();
   EXPECT_EQ(w.islands().islands.size(), 1u);
   checkPartition(w);
+  checkContacts(w);
+}
+
+TEST(Islands, ContactsDestroyedDuringARunLeaveIslandsAndCountsRight) {
+  // A box thrown up out of a row: its contacts part, then are destroyed (the last contact moves
+  // into the freed slot), and the row falls apart into two islands. Every step the islands must
+  // match the contacts as they now are.
+  World w;
+  addGround(w);
+  std::vector<uint32_t> row;
+  for (int i = 0; i < 6; ++i) row.push_back(addBox(w, Vec3(1.0f * float(i), 0.5f, 0.0f)));
+  for (int s = 0; s < 3; ++s) w.step();
+  ASSERT_EQ(w.islands().islands.size(), 1u);
+  const size_t before = w.contacts().size();
+  w.bodies().v[row[2]] = Vec3(0.0f, 12.0f, 0.0f);
+  for (int s = 0; s < 30; ++s) {
+    w.step();
+    checkPartition(w);
+    checkContacts(w);
+  }
+  EXPECT_LT(w.contacts().size(), before) << "the thrown box's contacts were never destroyed";
+  ASSERT_EQ(w.islands().islands.size(), 3u);  // {0, 1}, {3, 4, 5} and the box in the air
+  EXPECT_EQ(w.islandOf(row[0]), w.islandOf(row[1]));
+  EXPECT_EQ(w.islandOf(row[3]), w.islandOf(row[5]));
+  EXPECT_NE(w.islandOf(row[0]), w.islandOf(row[3]));
+  EXPECT_NE(w.islandOf(row[2]), w.islandOf(row[0]));
 }
 
 }  // namespace
