@@ -1,5 +1,6 @@
 #include "haif/island_split.h"
 
+#include "core/sort_key.h"
 #include "dynamics/contact_solver.h"
 
 #include <algorithm>
@@ -16,8 +17,8 @@ uint32_t StripLayout::criticalRows() const {
   return even + odd + rows[strips];
 }
 
-void IslandSplitter::split(const BodyStore& bodies, const std::vector<Contact>& contacts, const Vec3& up,
-                           IslandSet& set, uint32_t k, StripLayout& out) {
+void IslandSplitter::split(const BodyStore& bodies, const ContactEdge* contacts, const Vec3& up, IslandSet& set,
+                           uint32_t k, StripLayout& out) {
   const Island& isl = set.islands[k];
   const uint32_t* ids = set.bodies.data() + isl.firstBody;
   const uint32_t nb = isl.bodyCount;
@@ -45,12 +46,13 @@ void IslandSplitter::split(const BodyStore& bodies, const std::vector<Contact>& 
     }
   }
 
-  // Equal body counts per strip, by rank along the axis (ties by id: deterministic).
+  // Equal body counts per strip, by rank along the axis (ties by id: deterministic), sorted as one
+  // integer per body.
   keys_.resize(nb);
-  for (uint32_t j = 0; j < nb; ++j) keys_[j] = {bodies.xf[ids[j]].p[axis], ids[j]};
+  for (uint32_t j = 0; j < nb; ++j) keys_[j] = ascendingKey(bodies.xf[ids[j]].p[axis], ids[j]);
   std::sort(keys_.begin(), keys_.end());
   if (stripOfBody_.size() < bodies.size()) stripOfBody_.resize(bodies.size());
-  for (uint32_t r = 0; r < nb; ++r) stripOfBody_[keys_[r].second] = uint32_t(uint64_t(r) * strips / nb);
+  for (uint32_t r = 0; r < nb; ++r) stripOfBody_[keyIndex(keys_[r])] = uint32_t(uint64_t(r) * strips / nb);
 
   // Each contact goes to the lower strip of its island bodies (a static or kinematic end does not
   // count: it is never written); bodies further apart than neighbouring strips go to the tail.
@@ -60,7 +62,7 @@ void IslandSplitter::split(const BodyStore& bodies, const std::vector<Contact>& 
   for (uint32_t s = 0; s <= strips; ++s) out.rows[s] = 0;
   uint32_t count[kMaxStrips + 1] = {};
   for (uint32_t j = 0; j < nc; ++j) {
-    const Contact& c = contacts[cs[j]];
+    const ContactEdge& c = contacts[cs[j]];
     const bool ma = bodies.isAwakeDynamic(c.a), mb = bodies.isAwakeDynamic(c.b);
     const uint32_t sa = ma ? stripOfBody_[c.a] : stripOfBody_[c.b];
     const uint32_t sb = mb ? stripOfBody_[c.b] : sa;
@@ -68,7 +70,7 @@ void IslandSplitter::split(const BodyStore& bodies, const std::vector<Contact>& 
     const uint32_t s = hi - lo <= 1 ? lo : strips;
     stripOfContact_[j] = s;
     ++count[s];
-    out.rows[s] += solverRowsFor(c.manifold.count);
+    out.rows[s] += solverRowsFor(int(c.count));
   }
   out.start[0] = 0;
   for (uint32_t s = 0; s <= strips; ++s) out.start[s + 1] = out.start[s] + count[s];

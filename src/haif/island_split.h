@@ -49,11 +49,11 @@ class IslandSplitter {
   /// Regroups island `k`'s contacts in `set.contacts` strip by strip (keeping their order inside a
   /// strip) and describes the result in `out`. `up` is the direction opposite gravity (any unit
   /// vector when there is none). Keeps its scratch buffers between steps.
-  void split(const BodyStore& bodies, const std::vector<Contact>& contacts, const Vec3& up, IslandSet& set,
-             uint32_t k, StripLayout& out);
+  void split(const BodyStore& bodies, const ContactEdge* contacts, const Vec3& up, IslandSet& set, uint32_t k,
+             StripLayout& out);
 
  private:
-  std::vector<std::pair<float, uint32_t>> keys_;  // (position along the axis, body) of the island's bodies
+  std::vector<uint64_t> keys_;                    // (position along the axis, body) of the island's bodies, packed
   std::vector<uint32_t> stripOfBody_;             // per body id
   std::vector<uint32_t> stripOfContact_;          // per contact of the island, in island order
   std::vector<uint32_t> scratch_;

@@ -111,6 +111,8 @@ class World {
   uint32_t bodyCount() const { return static_cast<uint32_t>(bodies_.size()); }
   const Shape& shape(uint32_t body) const { return shapes_[body]; }
   const std::vector<Contact>& contacts() const { return contacts_; }
+  /// Per contact, its bodies and point count as of the last narrow phase (what island building reads).
+  const std::vector<ContactEdge>& contactEdges() const { return contactEdges_; }
   const IslandSet& islands() const { return islands_; }
   /// Island index (into islands().islands) a body was solved in during the last step; -1 if none.
   int32_t islandOf(uint32_t body) const { return body < islandOfBody_.size() ? islandOfBody_[body] : -1; }
@@ -183,7 +185,7 @@ class World {
   IslandSet islands_;
   std::vector<int32_t> islandOfBody_;
   std::vector<float> contactHeight_;  // solve-order key per contact
-  std::vector<uint64_t> orderKeys_;   // the top-down sort's keys, in island order (see topDownKey)
+  std::vector<uint64_t> orderKeys_;   // the top-down sort's keys (descendingKey), in island order
   std::vector<float> carried_;        // per body: weight impulse (N s) it carries this step, for cold contacts
   std::vector<uint16_t> supports_;    // per body: contacts holding it up
   std::vector<ContactConstraint> constraints_;

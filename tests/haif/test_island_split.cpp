@@ -31,7 +31,7 @@ TEST(IslandSplit, StripsOfOnePhaseShareNoDynamicBody) {
   IslandSet copy = set;
   IslandSplitter splitter;
   StripLayout layout;
-  splitter.split(w.bodies(), w.contacts(), Vec3::UnitY(), copy, 0, layout);
+  splitter.split(w.bodies(), w.contactEdges().data(), Vec3::UnitY(), copy, 0, layout);
   ASSERT_GE(layout.strips, 2u);
   const Island& isl = copy.islands[0];
   EXPECT_EQ(layout.start[layout.strips + 1], isl.contactCount);
@@ -77,7 +77,7 @@ TEST(IslandSplit, KeepsTheSolveOrderInsideEachStrip) {
   IslandSet copy = set;
   IslandSplitter splitter;
   StripLayout layout;
-  splitter.split(w.bodies(), w.contacts(), Vec3::UnitY(), copy, 0, layout);
+  splitter.split(w.bodies(), w.contactEdges().data(), Vec3::UnitY(), copy, 0, layout);
   for (uint32_t s = 0; s <= layout.strips; ++s)
     for (uint32_t j = layout.start[s] + 1; j < layout.start[s + 1]; ++j)
       EXPECT_LT(rank[copy.contacts[isl.firstContact + j - 1]], rank[copy.contacts[isl.firstContact + j]])
@@ -96,7 +96,7 @@ TEST(IslandSplit, AWideBodyGoesToTheSerialTail) {
   IslandSet copy = set;
   IslandSplitter splitter;
   StripLayout layout;
-  splitter.split(w.bodies(), w.contacts(), Vec3::UnitY(), copy, 0, layout);
+  splitter.split(w.bodies(), w.contactEdges().data(), Vec3::UnitY(), copy, 0, layout);
   ASSERT_GE(layout.strips, 2u);
   EXPECT_GT(layout.start[layout.strips + 1] - layout.start[layout.strips], 0u);
 }

@@ -1,0 +1,57 @@
+// Packed sort keys give the same order as comparing (value, index) pairs.
+#include "core/sort_key.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+namespace haif {
+namespace {
+
+std::vector<float> someValues() {
+  std::vector<float> v = {0.0f, -0.0f, 1.0f, -1.0f, 1e-30f, -1e-30f, 3.5f, 3.5f, -2.25f, 1e30f, -1e30f, 0.0f};
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> d(-100.0f, 100.0f);
+  for (int i = 0; i < 500; ++i) v.push_back(i % 5 == 0 ? float(int(d(rng))) : d(rng));  // with repeats
+  return v;
+}
+
+TEST(SortKey, AscendingKeysSortAsValueThenIndex) {
+  const std::vector<float> v = someValues();
+  std::vector<uint32_t> byCompare(v.size());
+  std::vector<uint64_t> keys(v.size());
+  for (uint32_t i = 0; i < v.size(); ++i) {
+    byCompare[i] = i;
+    keys[i] = ascendingKey(v[i], i);
+  }
+  std::sort(byCompare.begin(), byCompare.end(),
+            [&](uint32_t x, uint32_t y) { return v[x] < v[y] || (v[x] == v[y] && x < y); });
+  std::sort(keys.begin(), keys.end());
+  for (size_t r = 0; r < v.size(); ++r) ASSERT_EQ(keyIndex(keys[r]), byCompare[r]) << "rank " << r;
+}
+
+TEST(SortKey, DescendingKeysSortAsValueDownThenIndexUp) {
+  const std::vector<float> v = someValues();
+  std::vector<uint32_t> byCompare(v.size());
+  std::vector<uint64_t> keys(v.size());
+  for (uint32_t i = 0; i < v.size(); ++i) {
+    byCompare[i] = i;
+    keys[i] = descendingKey(v[i], i);
+  }
+  std::sort(byCompare.begin(), byCompare.end(),
+            [&](uint32_t x, uint32_t y) { return v[x] > v[y] || (v[x] == v[y] && x < y); });
+  std::sort(keys.begin(), keys.end());
+  for (size_t r = 0; r < v.size(); ++r) ASSERT_EQ(keyIndex(keys[r]), byCompare[r]) << "rank " << r;
+}
+
+TEST(SortKey, SignedZerosTie) {
+  EXPECT_EQ(orderedBits(0.0f), orderedBits(-0.0f));
+  EXPECT_LT(orderedBits(-1e-30f), orderedBits(0.0f));
+  EXPECT_LT(orderedBits(0.0f), orderedBits(1e-30f));
+}
+
+}  // namespace
+}  // namespace haif
