@@ -19,32 +19,28 @@ std::vector<float> someValues() {
   return v;
 }
 
-TEST(SortKey, AscendingKeysSortAsValueThenIndex) {
+// Sorting the keys made by `key` ranks the values exactly as sorting indices with `before` does.
+template <class Key, class Before>
+void expectKeysSortLike(Key key, Before before) {
   const std::vector<float> v = someValues();
   std::vector<uint32_t> byCompare(v.size());
   std::vector<uint64_t> keys(v.size());
   for (uint32_t i = 0; i < v.size(); ++i) {
     byCompare[i] = i;
-    keys[i] = ascendingKey(v[i], i);
+    keys[i] = key(v[i], i);
   }
   std::sort(byCompare.begin(), byCompare.end(),
-            [&](uint32_t x, uint32_t y) { return v[x] < v[y] || (v[x] == v[y] && x < y); });
+            [&](uint32_t x, uint32_t y) { return before(v[x], v[y]) || (v[x] == v[y] && x < y); });
   std::sort(keys.begin(), keys.end());
   for (size_t r = 0; r < v.size(); ++r) ASSERT_EQ(keyIndex(keys[r]), byCompare[r]) << "rank " << r;
 }
 
+TEST(SortKey, AscendingKeysSortAsValueThenIndex) {
+  expectKeysSortLike(ascendingKey, [](float a, float b) { return a < b; });
+}
+
 TEST(SortKey, DescendingKeysSortAsValueDownThenIndexUp) {
-  const std::vector<float> v = someValues();
-  std::vector<uint32_t> byCompare(v.size());
-  std::vector<uint64_t> keys(v.size());
-  for (uint32_t i = 0; i < v.size(); ++i) {
-    byCompare[i] = i;
-    keys[i] = descendingKey(v[i], i);
-  }
-  std::sort(byCompare.begin(), byCompare.end(),
-            [&](uint32_t x, uint32_t y) { return v[x] > v[y] || (v[x] == v[y] && x < y); });
-  std::sort(keys.begin(), keys.end());
-  for (size_t r = 0; r < v.size(); ++r) ASSERT_EQ(keyIndex(keys[r]), byCompare[r]) << "rank " << r;
+  expectKeysSortLike(descendingKey, [](float a, float b) { return a > b; });
 }
 
 TEST(SortKey, SignedZerosTie) {
