@@ -14,7 +14,6 @@ void IslandBuilder::build(const BodyStore& bodies, const ContactEdge* contacts, 
   for (uint32_t i = 0; i < n; ++i) parent_[i] = i;
   // Unite, and keep what the later passes need per contact.
   contactBody_.resize(nc);
-  contactRows_.resize(nc);
   out.touchingContacts = out.contactPoints = 0;
   for (uint32_t ci = 0; ci < nc; ++ci) {
     const ContactEdge& c = contacts[ci];
@@ -28,7 +27,6 @@ void IslandBuilder::build(const BodyStore& bodies, const ContactEdge* contacts, 
       body = dynA ? c.a : dynB ? c.b : kNoBody;
     }
     contactBody_[ci] = body;
-    contactRows_[ci] = body == kNoBody ? 0 : solverRowsFor(int(c.count));
   }
   auto activeEnd = [&](uint32_t i) { return i != kWorldBody && bodies.isAwakeDynamic(i); };
   for (const Joint& j : joints)
@@ -56,7 +54,7 @@ void IslandBuilder::build(const BodyStore& bodies, const ContactEdge* contacts, 
     const int32_t k = islandOfContact(ci);
     if (k < 0) continue;
     ++unsorted_[k].contactCount;
-    unsorted_[k].rows += contactRows_[ci];
+    unsorted_[k].rows += solverRowsFor(int(contacts[ci].count));
   }
   auto islandOfJoint = [&](const Joint& j) -> int32_t {
     if (j.broken) return -1;

@@ -68,7 +68,6 @@ class IslandBuilder {
   std::vector<uint32_t> parent_;
   std::vector<int32_t> islandOfRoot_, islandOfBody_;  // island (in numbering order) of each root / body
   std::vector<uint32_t> contactBody_;                  // the awake dynamic body a contact belongs by, or kNoBody
-  std::vector<uint32_t> contactRows_;                  // its solver rows
   std::vector<uint32_t> cursorBody_, cursorContact_, cursorJoint_;
   std::vector<uint32_t> order_;
   std::vector<Island> unsorted_;

@@ -307,8 +307,10 @@ void World::narrowPhase() {
       ContactEdge& edge = contactEdges_[ci];
       edge.a = c.a;
       edge.b = c.b;
-      noteEdge(c, edge);
-      if (!active(c.a) && !active(c.b)) continue;  // sleeping or static on both sides: keep the manifold
+      if (!active(c.a) && !active(c.b)) {  // sleeping or static on both sides: keep the manifold
+        noteEdge(c, edge);
+        continue;
+      }
       const Transform &xa = bodies_.xf[c.a], &xb = bodies_.xf[c.b];
       // Speculative margin: as far as the pair closes in one step, uncapped, so a small fast body meets a
       // thin wall the step before it would pass it (a 1 m cap let 5 cm bodies through above 60 m/s). It
@@ -831,10 +833,11 @@ void World::estimateColdImpulses() {
     const uint32_t u = slope > 0.0f ? c.b : c.a;
     return bodies_.isAwakeDynamic(u) ? int64_t(u) : -1;
   };
-  // Cold: no impulse to warm start from, and the bodies nearly at rest relative to each other.
-  auto isCold = [&](const Contact& c) {
-    for (int i = 0; i < c.manifold.count; ++i)
-      if (c.normalImpulse[i] != 0.0f) return false;
+  // Cold: no impulse to warm start from (the narrow phase noted that in the contact's edge), and the
+  // bodies nearly at rest relative to each other.
+  auto isCold = [&](uint32_t ci) {
+    if (!contactEdges_[ci].unloaded) return false;
+    const Contact& c = contacts_[ci];
     return std::fabs(c.manifold.points[0].normal.dot(bodies_.v[c.b] - bodies_.v[c.a])) <= restSpeed;
   };
   // Islands share no dynamic body (a static lower body receives nothing): they run concurrently.
@@ -848,11 +851,10 @@ void World::estimateColdImpulses() {
       // A pile that has settled has no cold support left: its loads need not be added up (in
       // large_pyramid that was 0.4 ms a step, serial on its one island).
       bool anyCold = false;
-      // The flat edges say which contacts carry no impulse; only those are read.
+      // Only contacts whose edge says they carry no impulse are read.
       for (uint32_t j = 0; j < isl.contactCount && !anyCold; ++j) {
-        if (!contactEdges_[contacts[j]].unloaded) continue;
-        const Contact& c = contacts_[contacts[j]];
-        anyCold = c.manifold.count > 0 && isCold(c) && upper(c, slope) >= 0;
+        const uint32_t ci = contacts[j];
+        anyCold = contactEdges_[ci].count > 0 && isCold(ci) && upper(contacts_[ci], slope) >= 0;
       }
       if (!anyCold) continue;
       for (uint32_t j = 0; j < isl.bodyCount; ++j) {
@@ -871,7 +873,7 @@ void World::estimateColdImpulses() {
         const uint32_t lower = uint32_t(u) == c.a ? c.b : c.a;
         const float share = (bodies_.mass[u] * g * dt + carried_[u]) / float(supports_[u]);
         if (bodies_.isAwakeDynamic(lower)) carried_[lower] += share;
-        if (!isCold(c)) continue;
+        if (!isCold(contacts[j])) continue;
         const float perPoint = share / (std::fabs(slope) * float(c.manifold.count));
         for (int i = 0; i < c.manifold.count; ++i) c.normalImpulse[i] = perPoint;
       }
