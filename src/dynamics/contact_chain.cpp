@@ -33,12 +33,11 @@ void buildRows(const ContactConstraint& c, ChainLink& link) {
       link.basis[i][r] = float(B[i][r]);
       if (i >= c.count) continue;
       const float w = float(B[i][r]);
-      const ContactConstraint::Point& p = c.points[i];
       lin += B[i][r];
-      angA += w * p.rAxn;
-      angB += w * p.rBxn;
-      invA += w * p.iAn;
-      invB += w * p.iBn;
+      angA += w * c.rAxn.row(i);
+      angB += w * c.rBxn.row(i);
+      invA += w * c.iAn.row(i);
+      invB += w * c.iBn.row(i);
     }
     link.lin[r] = float(lin);
     link.angA[r] = angA;
@@ -83,7 +82,7 @@ void coupleLinks(const ContactConstraint& cp, const ContactConstraint& cc, Chain
   const int sideP = p.sideToNext, sideC = c.sideFromPrev;
   const double sign = (sideP == 1 ? 1.0 : -1.0) * (sideC == 1 ? 1.0 : -1.0);
   const double invMass = sideP == 1 ? cp.invMassB : cp.invMassA;
-  const double normals = double(cp.points[0].normal.dot(cc.points[0].normal));
+  const double normals = double(cp.normal.row(0).dot(cc.normal.row(0)));
   for (int r = 0; r < 3; ++r)
     for (int q = 0; q < 3; ++q) {
       p.next[r][q] = 0.0;
@@ -175,9 +174,9 @@ inline float pointChange(const ChainLink& link, int i, float omega) {
 }
 
 // J v + b of a normal row at the given body velocities: < 0 where the row is violated.
-inline float rowGap(const ContactConstraint::Point& p, const Vec3& va, const Vec3& wa, const Vec3& vb, const Vec3& wb,
+inline float rowGap(const ContactConstraint& c, int i, const Vec3& va, const Vec3& wa, const Vec3& vb, const Vec3& wb,
                     bool useBias) {
-  return rowVelocity(p, va, wa, vb, wb) + rowBias(p, useBias);
+  return rowVelocity(c, i, va, wa, vb, wb) + rowBias(c, i, useBias);
 }
 
 // rhs = −Bᵀ (J v + b) of the active links at the bodies' current velocities.
@@ -189,7 +188,7 @@ void computeRhs(const BodyStore& bodies, const ContactConstraint* cs, ChainLink*
     const Vec3 &va = bodies.v[c.a], &wa = bodies.w[c.a], &vb = bodies.v[c.b], &wb = bodies.w[c.b];
     float rhs[3] = {0.0f, 0.0f, 0.0f};
     for (int i = 0; i < c.count; ++i) {
-      const float g = rowGap(c.points[i], va, wa, vb, wb, useBias);
+      const float g = rowGap(c, i, va, wa, vb, wb, useBias);
       for (int r = 0; r < 3; ++r) rhs[r] -= link.basis[i][r] * g;
     }
     for (int r = 0; r < 3; ++r) link.rhs[r] = rhs[r];
@@ -248,7 +247,7 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
     float before[kMaxManifoldPoints];
     for (int i = 0; i < c.count; ++i) {
       before[i] = c.delta[i];
-      c.points[i].normalImpulse += applied[i];
+      c.normalImpulse[i] += applied[i];
     }
     Vec3 va, wa, vb, wb;
     load(c, va, wa, vb, wb);
@@ -260,7 +259,7 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
     float applied[kMaxManifoldPoints] = {};
     bool any = false;
     for (int i = 0; i < c.count; ++i) {
-      applied[i] = -c.points[i].normalImpulse;
+      applied[i] = -c.normalImpulse[i];
       any |= applied[i] != 0.0f;
     }
     if (any) commit(c, applied);
@@ -268,7 +267,7 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
   auto touches = [&](const ContactConstraint& c) {
     const Vec3 &va = bodies.v[c.a], &wa = bodies.w[c.a], &vb = bodies.v[c.b], &wb = bodies.w[c.b];
     for (int i = 0; i < c.count; ++i)
-      if (rowGap(c.points[i], va, wa, vb, wb, useBias) < kTouchingGap) return true;
+      if (rowGap(c, i, va, wa, vb, wb, useBias) < kTouchingGap) return true;
     return false;
   };
 
@@ -296,7 +295,7 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
     // under a heavy load that friction keeps disturbing, it fed back sweep after sweep until a
     // small box between two heavy balls left at 1700 m/s (pile_10000).
     bool pushes = false;
-    for (int i = 0; i < c.count; ++i) pushes |= c.points[i].normalImpulse > 0.0f;
+    for (int i = 0; i < c.count; ++i) pushes |= c.normalImpulse[i] > 0.0f;
     links[j].active = touches(c) || pushes;
   }
 
@@ -313,7 +312,7 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
       ContactConstraint& c = cs[j];
       float total = 0.0f, size = 0.0f, lowest = 0.0f;
       for (int i = 0; i < c.count; ++i) {
-        const float next = c.points[i].normalImpulse + pointChange(link, i, omega);
+        const float next = c.normalImpulse[i] + pointChange(link, i, omega);
         lowest = std::min(lowest, next);
         total += next;
         size += std::fabs(next);
@@ -326,8 +325,8 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
         // again on the basis of the others.
         float applied[kMaxManifoldPoints] = {};
         for (int i = 0; i < c.count; ++i)
-          if (c.points[i].normalImpulse + pointChange(link, i, omega) < -link.slack) {
-            applied[i] = -c.points[i].normalImpulse;
+          if (c.normalImpulse[i] + pointChange(link, i, omega) < -link.slack) {
+            applied[i] = -c.normalImpulse[i];
             link.points &= ~(1u << i);
           }
         commit(c, applied);
@@ -349,7 +348,7 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
       if (!links[j].active) continue;
       float applied[kMaxManifoldPoints] = {};
       for (int i = 0; i < cs[j].count; ++i) {
-        const float old = cs[j].points[i].normalImpulse;
+        const float old = cs[j].normalImpulse[i];
         applied[i] = std::max(0.0f, old + pointChange(links[j], i, omega)) - old;
       }
       commit(cs[j], applied);
@@ -372,7 +371,7 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
       const unsigned before = link.points;
       const Vec3 &va = bodies.v[c.a], &wa = bodies.w[c.a], &vb = bodies.v[c.b], &wb = bodies.w[c.b];
       for (int i = 0; i < c.count; ++i)
-        if (!(link.points & (1u << i)) && rowGap(c.points[i], va, wa, vb, wb, useBias) < -kRejoinGap)
+        if (!(link.points & (1u << i)) && rowGap(c, i, va, wa, vb, wb, useBias) < -kRejoinGap)
           link.points |= 1u << i;
       if (link.points == before) continue;
       buildRows(c, link);
@@ -399,7 +398,7 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
     const ContactConstraint& c = cs[j];
     // |Δλ| K_ii: the velocity correction of the row over the whole sweep.
     for (int i = 0; i < c.count; ++i)
-      if (c.points[i].normalMass > 0.0f)
+      if (c.normalMass[i] > 0.0f)
         residual = std::max(residual, std::fabs(c.delta[i]) * c.normalCoupling[i][i]);
     change += squaredChange(c);
   }

@@ -1,9 +1,15 @@
 #include "dynamics/contact_solver.h"
 
+#include "core/simd4.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace haif {
+
+using simd4::F4;
+using simd4::load;
+using simd4::store;
 
 bool invertSymmetric3(const double a[3][3], double out[3][3], double minDetRatio) {
   const double c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1];
@@ -137,9 +143,9 @@ bool prepareBlockInverse(const Manifold& mf, const Vec3& centre, const Vec3& t1,
                          ContactConstraint& cc) {
   const int m = cc.count;
   if (m < 2) return false;
-  const Vec3 n0 = cc.points[0].normal;
+  const Vec3 n0 = cc.normal.row(0);
   for (int i = 1; i < m; ++i)
-    if ((cc.points[i].normal - n0).squaredNorm() > 1e-8f) return false;
+    if ((cc.normal.row(i) - n0).squaredNorm() > 1e-8f) return false;
   double B[kMaxManifoldPoints][3];
   const int k = manifoldBasis(mf, centre, t1, t2, B);
   const auto& K = cc.normalCoupling;
@@ -176,43 +182,77 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   const Vec3 vA = bodies.v[a], wA = bodies.w[a], vB = bodies.v[b], wB = bodies.w[b];
   const float invDt = 1.0f / p.dt;
 
+  // The normal rows, all four points at once (see RowVectors). Points past the count have a zero
+  // normal, which makes every field of their rows zero except the mass, masked below.
+  F4 px{}, py{}, pz{}, nx{}, ny{}, nz{}, depth{}, warm{};
   Vec3 centre = Vec3::Zero(), normalSum = Vec3::Zero();
   for (int i = 0; i < cc.count; ++i) {
     const ContactPoint& mp = contact.manifold.points[i];
-    ContactConstraint::Point& cp = cc.points[i];
-    cp.normal = mp.normal;
-    const Vec3 n = cp.normal;
-    const Vec3 rA = mp.position - pA;
-    const Vec3 rB = mp.position - pB;
-    cp.rAxn = rA.cross(n);
-    cp.rBxn = rB.cross(n);
-    cp.iAn = iA * cp.rAxn;
-    cp.iBn = iB * cp.rBxn;
-    const float k = mSum + cp.rAxn.dot(cp.iAn) + cp.rBxn.dot(cp.iBn);
-    cp.normalMass = k > 0.0f ? 1.0f / k : 0.0f;
-
-    // Main sweeps: close a speculative gap exactly, push penetration beyond the slop out
-    // (Baumgarte, no faster than maxPushVelocity). Relax sweeps (after positions moved): no
-    // push-out, so it does not become kinetic energy; a contact that pushed this step and was
-    // approached fast enough bounces, from where it now is.
-    const float vn = n.dot(vB - vA) + cp.rBxn.dot(wB) - cp.rAxn.dot(wA);
-    const float speculative = mp.depth < 0.0f ? mp.depth * invDt : 0.0f;  // approach by the gap, no faster
-    const float push = std::min(p.beta * invDt * std::max(0.0f, mp.depth - p.slop), p.maxPushVelocity);
-    cp.bias = mp.depth < 0.0f ? -speculative : -push;
-    cp.restitutionBias = contact.restitution > 0.0f && vn < -p.restitutionThreshold ? contact.restitution * vn : 0.0f;
-    cp.relaxBias = -speculative;
-    cp.normalImpulse = p.warmStart ? contact.normalImpulse[i] : 0.0f;
+    px[i] = mp.position.x();
+    py[i] = mp.position.y();
+    pz[i] = mp.position.z();
+    nx[i] = mp.normal.x();
+    ny[i] = mp.normal.y();
+    nz[i] = mp.normal.z();
+    depth[i] = mp.depth;
+    warm[i] = contact.normalImpulse[i];
     centre += mp.position;
-    normalSum += n;
+    normalSum += mp.normal;
   }
-  for (int i = 0; i < cc.count; ++i) {
-    const ContactConstraint::Point& pi = cc.points[i];
-    for (int j = i; j < cc.count; ++j) {  // symmetric: the solver reads rows as columns
-      const ContactConstraint::Point& pj = cc.points[j];
-      cc.normalCoupling[i][j] = cc.normalCoupling[j][i] =
-          mSum * pi.normal.dot(pj.normal) + pi.rAxn.dot(pj.iAn) + pi.rBxn.dot(pj.iBn);
-    }
+  const F4 ax = px - pA.x(), ay = py - pA.y(), az = pz - pA.z();
+  const F4 bx = px - pB.x(), by = py - pB.y(), bz = pz - pB.z();
+  const F4 rAxnX = ay * nz - az * ny, rAxnY = az * nx - ax * nz, rAxnZ = ax * ny - ay * nx;
+  const F4 rBxnX = by * nz - bz * ny, rBxnY = bz * nx - bx * nz, rBxnZ = bx * ny - by * nx;
+  const F4 iAnX = iA(0, 0) * rAxnX + iA(0, 1) * rAxnY + iA(0, 2) * rAxnZ;
+  const F4 iAnY = iA(1, 0) * rAxnX + iA(1, 1) * rAxnY + iA(1, 2) * rAxnZ;
+  const F4 iAnZ = iA(2, 0) * rAxnX + iA(2, 1) * rAxnY + iA(2, 2) * rAxnZ;
+  const F4 iBnX = iB(0, 0) * rBxnX + iB(0, 1) * rBxnY + iB(0, 2) * rBxnZ;
+  const F4 iBnY = iB(1, 0) * rBxnX + iB(1, 1) * rBxnY + iB(1, 2) * rBxnZ;
+  const F4 iBnZ = iB(2, 0) * rBxnX + iB(2, 1) * rBxnY + iB(2, 2) * rBxnZ;
+  store(cc.normal.x, nx);
+  store(cc.normal.y, ny);
+  store(cc.normal.z, nz);
+  store(cc.rAxn.x, rAxnX);
+  store(cc.rAxn.y, rAxnY);
+  store(cc.rAxn.z, rAxnZ);
+  store(cc.rBxn.x, rBxnX);
+  store(cc.rBxn.y, rBxnY);
+  store(cc.rBxn.z, rBxnZ);
+  store(cc.iAn.x, iAnX);
+  store(cc.iAn.y, iAnY);
+  store(cc.iAn.z, iAnZ);
+  store(cc.iBn.x, iBnX);
+  store(cc.iBn.y, iBnY);
+  store(cc.iBn.z, iBnZ);
+  const simd4::I4 used = simd4::I4{0, 1, 2, 3} < cc.count;
+  const F4 k = mSum + (rAxnX * iAnX + rAxnY * iAnY + rAxnZ * iAnZ) + (rBxnX * iBnX + rBxnY * iBnY + rBxnZ * iBnZ);
+  store(cc.normalMass, used & (k > 0.0f) ? 1.0f / k : F4{});
+
+  // Main sweeps: close a speculative gap exactly, push penetration beyond the slop out
+  // (Baumgarte, no faster than maxPushVelocity). Relax sweeps (after positions moved): no
+  // push-out, so it does not become kinetic energy; a contact that pushed this step and was
+  // approached fast enough bounces, from where it now is.
+  const Vec3 dv = vB - vA;
+  const F4 vn = nx * dv.x() + ny * dv.y() + nz * dv.z() + (rBxnX * wB.x() + rBxnY * wB.y() + rBxnZ * wB.z()) -
+                (rAxnX * wA.x() + rAxnY * wA.y() + rAxnZ * wA.z());
+  const F4 speculative = depth < 0.0f ? depth * invDt : F4{};  // approach by the gap, no faster
+  const F4 excess = simd4::clampNonNegative(depth - p.slop) * (p.beta * invDt);
+  const F4 push = excess < p.maxPushVelocity ? excess : F4{} + p.maxPushVelocity;
+  store(cc.bias, depth < 0.0f ? -speculative : -push);
+  store(cc.restitutionBias,
+        contact.restitution > 0.0f ? (vn < -p.restitutionThreshold ? contact.restitution * vn : F4{}) : F4{});
+  store(cc.relaxBias, -speculative);
+  store(cc.normalImpulse, p.warmStart ? warm : F4{});
+  // Coupling of the rows, symmetric (the solver reads rows as columns); rows and columns past the
+  // count come out zero.
+  for (int i = 0; i < kMaxManifoldPoints; ++i) {
+    const F4 row = mSum * (nx[i] * nx + ny[i] * ny + nz[i] * nz) +
+                   (rAxnX[i] * iAnX + rAxnY[i] * iAnY + rAxnZ[i] * iAnZ) +
+                   (rBxnX[i] * iBnX + rBxnY[i] * iBnY + rBxnZ[i] * iBnZ);
+    store(cc.normalCoupling[i], row);
   }
+  for (int i = 0; i < kMaxManifoldPoints; ++i)
+    for (int j = i + 1; j < kMaxManifoldPoints; ++j) cc.normalCoupling[j][i] = cc.normalCoupling[i][j];
 
   for (int r = 0; r < ContactConstraint::kRows; ++r) cc.delta[r] = cc.direction[r] = 0.0f;
   cc.blockExact = false;
@@ -220,7 +260,7 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   // Friction at the centre of the points, about the mean normal.
   if (cc.count == 0) return;
   centre /= float(cc.count);
-  const Vec3 n = normalSum.squaredNorm() > 1e-12f ? Vec3(normalSum.normalized()) : cc.points[0].normal;
+  const Vec3 n = normalSum.squaredNorm() > 1e-12f ? Vec3(normalSum.normalized()) : contact.manifold.points[0].normal;
   cc.twistAxis = n;
   orthonormalBasis(n, cc.tangent1, cc.tangent2);
   const Vec3 rA = centre - pA, rB = centre - pB;
@@ -289,85 +329,99 @@ inline void clampToFrictionCircle(float& n1, float& n2, float limit) {
 
 }  // namespace
 
+namespace {
+
+// What impulses `a` on the four normal rows apply: Σ a_i n_i (linear) and Σ a_i I⁻¹(r×n)_i for
+// each body. Rows past the count are zero and add nothing.
+struct RowImpulses {
+  Vec3 linear, angularA, angularB;
+};
+
+inline RowImpulses rowImpulses(const ContactConstraint& c, F4 a) {
+  const F4 s1 = simd4::laneSums(a * load(c.normal.x), a * load(c.normal.y), a * load(c.normal.z), a * load(c.iAn.x));
+  const F4 s2 = simd4::laneSums(a * load(c.iAn.y), a * load(c.iAn.z), a * load(c.iBn.x), a * load(c.iBn.y));
+  return {Vec3(s1[0], s1[1], s1[2]), Vec3(s1[3], s2[0], s2[1]),
+          Vec3(s2[2], s2[3], simd4::laneSum(a * load(c.iBn.z)))};
+}
+
+// J v of the four normal rows at the given body velocities.
+inline F4 rowVelocities(const ContactConstraint& c, const Vec3& va, const Vec3& wa, const Vec3& vb, const Vec3& wb) {
+  const Vec3 dv = vb - va;
+  return load(c.normal.x) * dv.x() + load(c.normal.y) * dv.y() + load(c.normal.z) * dv.z() +
+         (load(c.rBxn.x) * wb.x() + load(c.rBxn.y) * wb.y() + load(c.rBxn.z) * wb.z()) -
+         (load(c.rAxn.x) * wa.x() + load(c.rAxn.y) * wa.y() + load(c.rAxn.z) * wa.z());
+}
+
+// rowBias of the four rows.
+inline F4 rowBiases(const ContactConstraint& c, bool useBias) {
+  if (useBias) return load(c.bias);
+  const F4 bounce = load(c.restitutionBias);
+  return (bounce < 0.0f) & (load(c.normalImpulse) > 0.0f) ? bounce : load(c.relaxBias);
+}
+
+}  // namespace
+
 void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n) {
   for (size_t k = 0; k < n; ++k) {
     const ContactConstraint& c = cs[k];
     if (c.count == 0) continue;
-    Vec3 P = c.tangentImpulse1 * c.tangent1 + c.tangentImpulse2 * c.tangent2;
-    Vec3 angA = c.tangentImpulse1 * c.iAt1 + c.tangentImpulse2 * c.iAt2 + c.twistImpulse * c.iAtw;
-    Vec3 angB = c.tangentImpulse1 * c.iBt1 + c.tangentImpulse2 * c.iBt2 + c.twistImpulse * c.iBtw;
-    for (int i = 0; i < c.count; ++i) {
-      const ContactConstraint::Point& p = c.points[i];
-      P += p.normalImpulse * p.normal;
-      angA += p.normalImpulse * p.iAn;
-      angB += p.normalImpulse * p.iBn;
-    }
+    const RowImpulses r = rowImpulses(c, load(c.normalImpulse));
+    const Vec3 P = r.linear + (c.tangentImpulse1 * c.tangent1 + c.tangentImpulse2 * c.tangent2);
+    const Vec3 angA = r.angularA + (c.tangentImpulse1 * c.iAt1 + c.tangentImpulse2 * c.iAt2 + c.twistImpulse * c.iAtw);
+    const Vec3 angB = r.angularB + (c.tangentImpulse1 * c.iBt1 + c.tangentImpulse2 * c.iBt2 + c.twistImpulse * c.iBtw);
     apply(bodies, c, P, angA, angB);
-  }
-}
-
-// The normal rows of a manifold are solved as one small problem: their velocities are read once,
-// updated through the coupling matrix while a few projected passes settle the split of the load,
-// and the caller applies the net impulse change to the bodies once. M is the point count, known at
-// compile time so the passes unroll and the coupling update vectorises.
-template <int M>
-inline void solveNormalBlock(ContactConstraint& c, const Vec3& va, const Vec3& wa, const Vec3& vb, const Vec3& wb,
-                             float omega, bool useBias, float* applied) {
-  float vn[M], bias[M], lambda[M], start[M];
-  for (int i = 0; i < M; ++i) {
-    const ContactConstraint::Point& p = c.points[i];
-    vn[i] = rowVelocity(p, va, wa, vb, wb);
-    bias[i] = rowBias(p, useBias);
-    lambda[i] = start[i] = p.normalImpulse;
-  }
-  if (M > 1 && c.blockExact) {
-    // Exact block solve; kept only when it leaves every point pushing (λ ≥ 0).
-    float next[M];
-    bool loaded = true;
-    for (int i = 0; i < M; ++i) {
-      float d = 0.0f;
-      for (int j = 0; j < M; ++j) d -= c.blockInverse[i][j] * (vn[j] + bias[j]);
-      next[i] = lambda[i] + omega * d;
-      loaded &= next[i] >= 0.0f;
-    }
-    if (loaded) {
-      for (int i = 0; i < M; ++i) {
-        c.points[i].normalImpulse = next[i];
-        applied[i] = next[i] - start[i];
-      }
-      return;
-    }
-  }
-  constexpr int passes = M > 1 ? kManifoldNormalPasses : 1;
-  for (int pass = 0; pass < passes; ++pass) {
-    bool moved = false;
-    for (int i = 0; i < M; ++i) {
-      const float old = lambda[i];
-      lambda[i] = std::max(0.0f, old - omega * c.points[i].normalMass * (vn[i] + bias[i]));
-      const float d = lambda[i] - old;
-      if (d == 0.0f) continue;
-      moved = true;
-      for (int j = 0; j < M; ++j) vn[j] += c.normalCoupling[i][j] * d;  // K is symmetric: row i is column i
-    }
-    if (!moved) break;  // a pass that changed nothing ends the block solve (separated contacts: at once)
-  }
-  for (int i = 0; i < M; ++i) {
-    c.points[i].normalImpulse = lambda[i];
-    applied[i] = lambda[i] - start[i];
   }
 }
 
 namespace {
 
+// The normal rows of a manifold are solved as one small problem: their velocities are read once
+// (one 4-wide vector), updated through the coupling matrix while the exact block or a few projected
+// passes settle the split of the load, and the caller applies the net impulse change to the bodies
+// once. Returns the impulse change of each row (already added to c.normalImpulse).
+inline F4 solveNormalBlock(ContactConstraint& c, const Vec3& va, const Vec3& wa, const Vec3& vb, const Vec3& wb,
+                           float omega, bool useBias) {
+  F4 vn = rowVelocities(c, va, wa, vb, wb);
+  const F4 bias = rowBiases(c, useBias);
+  const F4 start = load(c.normalImpulse);
+  if (c.blockExact) {
+    // Exact block solve (2+ points); kept only when it leaves every point pushing (λ ≥ 0). G is
+    // symmetric, so its rows serve as the columns of the product.
+    const F4 s = vn + bias;
+    const F4 g = load(c.blockInverse[0]) * s[0] + load(c.blockInverse[1]) * s[1] + load(c.blockInverse[2]) * s[2] +
+                 load(c.blockInverse[3]) * s[3];
+    const F4 next = start - omega * g;
+    if (simd4::all(next >= 0.0f)) {
+      store(c.normalImpulse, next);
+      return next - start;
+    }
+  }
+  float lambda[kMaxManifoldPoints];
+  store(lambda, start);
+  const int passes = c.count > 1 ? kManifoldNormalPasses : 1;
+  for (int pass = 0; pass < passes; ++pass) {
+    bool moved = false;
+    for (int i = 0; i < c.count; ++i) {
+      const float old = lambda[i];
+      lambda[i] = std::max(0.0f, old - omega * c.normalMass[i] * (vn[i] + bias[i]));
+      const float d = lambda[i] - old;
+      if (d == 0.0f) continue;
+      moved = true;
+      vn += load(c.normalCoupling[i]) * d;  // K is symmetric: row i is column i
+    }
+    if (!moved) break;  // a pass that changed nothing ends the block solve (separated contacts: at once)
+  }
+  const F4 next = load(lambda);
+  store(c.normalImpulse, next);
+  return next - start;
+}
+
 // The parts of a sweep, inlined into solveIteration's loop (the exported functions below wrap them
 // for the chain solver): called out of line, large_pyramid's sweeps took 7% longer.
 [[gnu::always_inline]] inline void frictionRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb,
                                                  float omega) {
-  const int m = c.count;
   // Bounded by the normal impulses of the previous sweep.
-  float normalTotal = 0.0f;
-  for (int i = 0; i < m; ++i) normalTotal += c.points[i].normalImpulse;
-  const float limit = c.friction * normalTotal;
+  const float limit = c.friction * simd4::laneSum(load(c.normalImpulse));
   {
     // Twist about the normal.
     const float vt = c.twistAxis.dot(wb - wa);
@@ -400,40 +454,30 @@ namespace {
   wb += a1 * c.iBt1 + a2 * c.iBt2;
 }
 
-[[gnu::always_inline]] inline float normalChange(ContactConstraint& c, const float* applied, Vec3& va, Vec3& wa,
-                                                 Vec3& vb, Vec3& wb) {
-  float residual = 0.0f;
-  // All rows written (unused ones stay 0): a copy of c.count floats compiled to a memcpy call per
-  // manifold per sweep.
-  for (int i = 0; i < kMaxManifoldPoints; ++i) c.delta[i] = i < c.count ? applied[i] : 0.0f;
-  for (int i = 0; i < c.count; ++i) {
-    const ContactConstraint::Point& p = c.points[i];
-    va -= (c.invMassA * applied[i]) * p.normal;
-    wa -= applied[i] * p.iAn;
-    vb += (c.invMassB * applied[i]) * p.normal;
-    wb += applied[i] * p.iBn;
-    // |Δλ| / normalMass: the velocity correction of the row (K_ii = 1 / normalMass).
-    if (p.normalMass > 0.0f) residual = std::max(residual, std::fabs(applied[i]) * c.normalCoupling[i][i]);
-  }
-  return residual;
+[[gnu::always_inline]] inline float normalChange(ContactConstraint& c, F4 applied, Vec3& va, Vec3& wa, Vec3& vb,
+                                                 Vec3& wb) {
+  store(c.delta, applied);  // the normal rows' changes; rows past the count are zero
+  const RowImpulses r = rowImpulses(c, applied);
+  va -= c.invMassA * r.linear;
+  wa -= r.angularA;
+  vb += c.invMassB * r.linear;
+  wb += r.angularB;
+  // |Δλ| / normalMass: the velocity correction of each row (K_ii = 1 / normalMass); rows without
+  // a mass (degenerate, or past the count) do not count.
+  const F4 diagonal{c.normalCoupling[0][0], c.normalCoupling[1][1], c.normalCoupling[2][2], c.normalCoupling[3][3]};
+  const F4 scale = load(c.normalMass) > 0.0f ? diagonal : F4{};
+  return simd4::laneMax(simd4::abs(applied) * scale);
 }
 
 [[gnu::always_inline]] inline float normalRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb,
                                                float omega, bool useBias) {
-  float applied[kMaxManifoldPoints] = {};  // unused rows stay 0 (normalChange writes all four deltas)
-  switch (c.count) {
-    case 4: solveNormalBlock<4>(c, va, wa, vb, wb, omega, useBias, applied); break;
-    case 3: solveNormalBlock<3>(c, va, wa, vb, wb, omega, useBias, applied); break;
-    case 2: solveNormalBlock<2>(c, va, wa, vb, wb, omega, useBias, applied); break;
-    default: solveNormalBlock<1>(c, va, wa, vb, wb, omega, useBias, applied); break;
-  }
-  return normalChange(c, applied, va, wa, vb, wb);
+  return normalChange(c, solveNormalBlock(c, va, wa, vb, wb, omega, useBias), va, wa, vb, wb);
 }
 
 [[gnu::always_inline]] inline float rowsChange(const ContactConstraint& c) {
-  float sq = 0.0f;
-  for (int r = 0; r < ContactConstraint::kRows; ++r) sq += c.delta[r] * c.delta[r];
-  return sq;
+  constexpr int t1 = kMaxManifoldPoints, t2 = kMaxManifoldPoints + 1, tw = kMaxManifoldPoints + 2;
+  const F4 dn = load(c.delta);
+  return simd4::laneSum(dn * dn) + (c.delta[t1] * c.delta[t1] + c.delta[t2] * c.delta[t2] + c.delta[tw] * c.delta[tw]);
 }
 
 }  // namespace
@@ -443,7 +487,7 @@ void solveFrictionRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3&
 }
 
 float applyNormalChange(ContactConstraint& c, const float* applied, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb) {
-  return normalChange(c, applied, va, wa, vb, wb);
+  return normalChange(c, load(applied), va, wa, vb, wb);
 }
 
 float solveNormalRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb, float omega, bool useBias) {
@@ -498,18 +542,12 @@ void accelerate(BodyStore& bodies, ContactConstraint* cs, size_t n, float beta) 
     ContactConstraint& c = cs[k];
     if (c.count == 0) continue;
     float* d = c.direction;
-    Vec3 P = Vec3::Zero(), angA = Vec3::Zero(), angB = Vec3::Zero();
-    float normalTotal = 0.0f;
-    for (int i = 0; i < c.count; ++i) {
-      ContactConstraint::Point& p = c.points[i];
-      const float old = p.normalImpulse;
-      p.normalImpulse = std::max(0.0f, old + beta * d[i]);
-      const float applied = p.normalImpulse - old;
-      P += applied * p.normal;
-      angA += applied * p.iAn;
-      angB += applied * p.iBn;
-      normalTotal += p.normalImpulse;
-    }
+    const F4 old = load(c.normalImpulse);
+    const F4 next = simd4::clampNonNegative(old + beta * load(d));
+    store(c.normalImpulse, next);
+    const RowImpulses r = rowImpulses(c, next - old);
+    Vec3 P = r.linear, angA = r.angularA, angB = r.angularB;
+    const float normalTotal = simd4::laneSum(next);
     // Friction stays inside the cone of the new normal impulses.
     const float limit = c.friction * normalTotal;
     float n1 = c.tangentImpulse1 + beta * d[t1], n2 = c.tangentImpulse2 + beta * d[t2];
@@ -534,7 +572,7 @@ void storeImpulses(const ContactConstraint* cs, size_t n, Contact* contacts) {
   for (size_t k = 0; k < n; ++k) {
     const ContactConstraint& c = cs[k];
     Contact& ct = contacts[c.contact];
-    for (int i = 0; i < c.count; ++i) ct.normalImpulse[i] = c.points[i].normalImpulse;
+    for (int i = 0; i < c.count; ++i) ct.normalImpulse[i] = c.normalImpulse[i];
     if (c.count == 0) continue;
     ct.frictionImpulse = c.tangentImpulse1 * c.tangent1 + c.tangentImpulse2 * c.tangent2;
     ct.twistImpulse = c.twistImpulse;

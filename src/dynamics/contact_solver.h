@@ -25,37 +25,50 @@ struct SolverParams {
   float maxPushVelocity = 0.2f;
 };
 
+static_assert(kMaxManifoldPoints == 4, "the normal rows of a manifold are one 4-wide vector");
+
+/// Four rows' 3-vectors stored by component (x of the four rows, then y, then z), so a sweep reads
+/// one component of a manifold's four normal rows as one SIMD vector. Rows from the manifold's
+/// point count on hold zeros, which make their velocities and impulse changes zero.
+struct alignas(16) RowVectors {
+  float x[kMaxManifoldPoints], y[kMaxManifoldPoints], z[kMaxManifoldPoints];
+  Vec3 row(int i) const { return Vec3(x[i], y[i], z[i]); }
+  void set(int i, const Vec3& v) {
+    x[i] = v.x();
+    y[i] = v.y();
+    z[i] = v.z();
+  }
+};
+
 /// Solver rows of one contact, prepared once per step; laid out in solve order.
-struct ContactConstraint {
-  /// One normal row per manifold point.
-  struct Point {
-    Vec3 normal;            // world direction of the row (mesh contacts may differ per point)
-    Vec3 rAxn, rBxn;        // angular Jacobian parts
-    Vec3 iAn, iBn;          // I^-1 times the angular parts
-    float normalMass;       // 1 / (J M^-1 J^T)
-    float bias;             // b of the row (velocity, m/s)
-    float relaxBias;        // b without position correction (relax pass)
-    float restitutionBias;  // b of a bounce (e times the approach speed), or 0
-    float normalImpulse;
-  };
+struct alignas(16) ContactConstraint {
+  // One normal row per manifold point, every field stored by row (structure of arrays: the sweep
+  // solves the four rows with 4-wide vector operations). Rows from `count` on are zero.
+  RowVectors normal;       // world direction of each row (mesh contacts may differ per point)
+  RowVectors rAxn, rBxn;   // angular Jacobian parts
+  RowVectors iAn, iBn;     // I^-1 times the angular parts
+  alignas(16) float normalMass[kMaxManifoldPoints];       // 1 / (J M^-1 J^T)
+  alignas(16) float bias[kMaxManifoldPoints];             // b of the row (velocity, m/s)
+  alignas(16) float relaxBias[kMaxManifoldPoints];        // b without position correction (relax pass)
+  alignas(16) float restitutionBias[kMaxManifoldPoints];  // b of a bounce (e times the approach speed), or 0
+  alignas(16) float normalImpulse[kMaxManifoldPoints];
   uint32_t a, b;               // body ids
   uint32_t contact;            // index of the Contact it came from
   float invMassA, invMassB;
   bool dynA, dynB;             // only dynamic bodies receive velocity changes
   float friction;
   int count;
-  Point points[kMaxManifoldPoints];
   /// Coupling of the normal rows: K[i][j] = J_i M^-1 J_j^T. The normal rows of one manifold are
   /// solved together against it (see solveIteration), which keeps the torque a manifold carries
   /// consistent within each sweep.
-  float normalCoupling[kMaxManifoldPoints][kMaxManifoldPoints];
+  alignas(16) float normalCoupling[kMaxManifoldPoints][kMaxManifoldPoints];
   /// Exact solve of the normal block while every point stays loaded: Δλ = G (−J v − b), with
   /// G = B (BᵀKB)⁻¹ Bᵀ. When the points share one normal, each normal row is an affine function of
   /// its point's position in the contact plane, so K has rank ≤ 3 and B = [1, u, w] (u, w: the
   /// in-plane principal coordinates of the points) spans its range: G is K's pseudo-inverse there,
   /// and one product settles the block, torque split included, where passes only approach it.
   /// `blockExact` false: the points have different normals or are degenerate; passes only.
-  float blockInverse[kMaxManifoldPoints][kMaxManifoldPoints];
+  alignas(16) float blockInverse[kMaxManifoldPoints][kMaxManifoldPoints];
   bool blockExact;
 
   // Friction at the centre of the manifold. Friction per point would make the sliding torque
@@ -72,8 +85,8 @@ struct ContactConstraint {
 
   /// Rows in the order of `delta` and `direction`: the normal rows, then tangent 1, tangent 2, twist.
   static constexpr int kRows = kMaxManifoldPoints + 3;
-  float delta[kRows];      ///< impulse change of each row in the last sweep (unused rows stay 0)
-  float direction[kRows];  ///< conjugate direction of the accelerated solve (see accelerate)
+  alignas(16) float delta[kRows];      ///< impulse change of each row in the last sweep (unused rows stay 0)
+  alignas(16) float direction[kRows];  ///< conjugate direction of the accelerated solve (see accelerate)
 };
 
 /// Passes of projected Gauss-Seidel over a manifold's own normal rows per sweep, when the exact
@@ -110,16 +123,17 @@ void planarCoords(const Manifold& mf, const Vec3& centre, const Vec3& t1, const 
 /// other points are zero. Returns its rank.
 int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned mask, double B[kMaxManifoldPoints][3]);
 
-/// J v of a normal row: the bodies' relative velocity along its normal at its point (< 0: approaching).
-inline float rowVelocity(const ContactConstraint::Point& p, const Vec3& va, const Vec3& wa, const Vec3& vb,
+/// J v of normal row i: the bodies' relative velocity along its normal at its point (< 0: approaching).
+inline float rowVelocity(const ContactConstraint& c, int i, const Vec3& va, const Vec3& wa, const Vec3& vb,
                          const Vec3& wb) {
-  return p.normal.dot(vb - va) + p.rBxn.dot(wb) - p.rAxn.dot(wa);
+  return c.normal.row(i).dot(vb - va) + c.rBxn.row(i).dot(wb) - c.rAxn.row(i).dot(wa);
 }
 
 /// b of a normal row: with position correction in a main sweep (`useBias`), the relax bias or a
 /// bounce in a relax sweep.
-inline float rowBias(const ContactConstraint::Point& p, bool useBias) {
-  return useBias ? p.bias : (p.restitutionBias < 0.0f && p.normalImpulse > 0.0f ? p.restitutionBias : p.relaxBias);
+inline float rowBias(const ContactConstraint& c, int i, bool useBias) {
+  return useBias ? c.bias[i]
+                 : (c.restitutionBias[i] < 0.0f && c.normalImpulse[i] > 0.0f ? c.restitutionBias[i] : c.relaxBias[i]);
 }
 
 /// Writes a manifold's body velocities back after solving its rows. Static and kinematic bodies are

@@ -163,17 +163,16 @@ void packWide(const ContactConstraint* cs, int lanes, WideContactBatch& w) {
     w.invMassB[l] = c.invMassB;
     w.friction[l] = c.friction;
     for (int i = 0; i < c.count; ++i) {
-      const ContactConstraint::Point& p = c.points[i];
-      setLane(w.normal[i], l, p.normal);
-      setLane(w.rAxn[i], l, p.rAxn);
-      setLane(w.rBxn[i], l, p.rBxn);
-      setLane(w.iAn[i], l, p.iAn);
-      setLane(w.iBn[i], l, p.iBn);
-      w.normalMass[i][l] = p.normalMass;
-      w.bias[i][l] = p.bias;
-      w.relaxBias[i][l] = p.relaxBias;
-      w.restitutionBias[i][l] = p.restitutionBias;
-      w.normalImpulse[i][l] = p.normalImpulse;
+      setLane(w.normal[i], l, c.normal.row(i));
+      setLane(w.rAxn[i], l, c.rAxn.row(i));
+      setLane(w.rBxn[i], l, c.rBxn.row(i));
+      setLane(w.iAn[i], l, c.iAn.row(i));
+      setLane(w.iBn[i], l, c.iBn.row(i));
+      w.normalMass[i][l] = c.normalMass[i];
+      w.bias[i][l] = c.bias[i];
+      w.relaxBias[i][l] = c.relaxBias[i];
+      w.restitutionBias[i][l] = c.restitutionBias[i];
+      w.normalImpulse[i][l] = c.normalImpulse[i];
       for (int j = 0; j < c.count; ++j) {
         w.coupling[i][j][l] = c.normalCoupling[i][j];
         w.blockInverse[i][j][l] = c.blockExact ? c.blockInverse[i][j] : 0.0f;
@@ -213,7 +212,7 @@ void unpackWideImpulses(const WideContactBatch& w, ContactConstraint* cs) {
   for (int l = 0; l < w.lanes; ++l) {
     ContactConstraint& c = cs[l];
     if (!(w.active & (1u << l))) continue;
-    for (int i = 0; i < c.count; ++i) c.points[i].normalImpulse = w.normalImpulse[i][l];
+    for (int i = 0; i < c.count; ++i) c.normalImpulse[i] = w.normalImpulse[i][l];
     c.tangentImpulse1 = w.tangentImpulse1[l];
     c.tangentImpulse2 = w.tangentImpulse2[l];
     c.twistImpulse = w.twistImpulse[l];

@@ -91,8 +91,8 @@ TEST(WideSolver, SweepsAndMomentumMatchTheScalarSolver) {
     for (int l = 0; l < kLanes; ++l) {  // a block that would pull: some points let go, others push
       float lo = 1e9f, hi = 0.0f;
       for (int i = 0; i < cs[l].count; ++i) {
-        lo = std::min(lo, cs[l].points[i].normalImpulse);
-        hi = std::max(hi, cs[l].points[i].normalImpulse);
+        lo = std::min(lo, cs[l].normalImpulse[i]);
+        hi = std::max(hi, cs[l].normalImpulse[i]);
       }
       sawPasses |= cs[l].count == 4 && lo == 0.0f && hi > 0.0f;
     }
@@ -114,15 +114,15 @@ TEST(WideSolver, SweepsAndMomentumMatchTheScalarSolver) {
   bool sawClamp = false, sawBounce = false;
   for (int l = 0; l < kLanes; ++l) {
     for (int i = 0; i < cs[l].count; ++i)
-      EXPECT_NEAR(cw[l].points[i].normalImpulse, cs[l].points[i].normalImpulse, 2e-5f) << "lane " << l << " point " << i;
+      EXPECT_NEAR(cw[l].normalImpulse[i], cs[l].normalImpulse[i], 2e-5f) << "lane " << l << " point " << i;
     EXPECT_NEAR(cw[l].tangentImpulse1, cs[l].tangentImpulse1, 2e-5f) << "lane " << l;
     EXPECT_NEAR(cw[l].tangentImpulse2, cs[l].tangentImpulse2, 2e-5f) << "lane " << l;
     EXPECT_NEAR(cw[l].twistImpulse, cs[l].twistImpulse, 2e-5f) << "lane " << l;
     float total = 0.0f;
-    for (int i = 0; i < cs[l].count; ++i) total += cs[l].points[i].normalImpulse;
+    for (int i = 0; i < cs[l].count; ++i) total += cs[l].normalImpulse[i];
     const float t = std::hypot(cs[l].tangentImpulse1, cs[l].tangentImpulse2);
     sawClamp |= total > 0.0f && std::fabs(t - cs[l].friction * total) < 1e-4f * total;
-    sawBounce |= cs[l].points[0].restitutionBias < 0.0f;
+    sawBounce |= cs[l].restitutionBias[0] < 0.0f;
   }
   // The cases do reach the branches they are meant to.
   EXPECT_TRUE(sawPasses);
@@ -187,7 +187,7 @@ TEST(ScalarSolver, RestartInTheSweepEqualsAStartDirectionPass) {
     EXPECT_EQ(foldScene.bodies.w[b], passScene.bodies.w[b]) << "body " << b;
   }
   for (int l = 0; l < kLanes; ++l)
-    for (int i = 0; i < pass[l].count; ++i) EXPECT_EQ(fold[l].points[i].normalImpulse, pass[l].points[i].normalImpulse);
+    for (int i = 0; i < pass[l].count; ++i) EXPECT_EQ(fold[l].normalImpulse[i], pass[l].normalImpulse[i]);
 }
 
 }  // namespace
