@@ -63,7 +63,7 @@ bool prepareLink(const Contact& contact, const ContactConstraint& c, ChainLink& 
   Vec3 centre = Vec3::Zero();
   for (int i = 0; i < c.count; ++i) centre += contact.manifold.points[i].position;
   centre /= float(c.count);
-  planarCoords(contact.manifold, centre, c.tangent1, c.tangent2, link.coords);
+  planarCoords(contact.manifold, centre, c.tangent1(), c.tangent2(), link.coords);
   link.points = (1u << c.count) - 1u;
   buildRows(c, link);
   for (int r = 0; r < 3; ++r)

@@ -254,28 +254,43 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   for (int i = 0; i < kMaxManifoldPoints; ++i)
     for (int j = i + 1; j < kMaxManifoldPoints; ++j) cc.normalCoupling[j][i] = cc.normalCoupling[i][j];
 
-  for (int r = 0; r < ContactConstraint::kRows; ++r) cc.delta[r] = cc.direction[r] = 0.0f;
+  for (int r = 0; r <= ContactConstraint::kRows; ++r) cc.delta[r] = cc.direction[r] = 0.0f;
   cc.blockExact = false;
 
   // Friction at the centre of the points, about the mean normal.
   if (cc.count == 0) return;
   centre /= float(cc.count);
   const Vec3 n = normalSum.squaredNorm() > 1e-12f ? Vec3(normalSum.normalized()) : contact.manifold.points[0].normal;
-  cc.twistAxis = n;
-  orthonormalBasis(n, cc.tangent1, cc.tangent2);
+  Vec3 t1, t2;
+  orthonormalBasis(n, t1, t2);
   const Vec3 rA = centre - pA, rB = centre - pB;
-  cc.rAxt1 = rA.cross(cc.tangent1);
-  cc.rBxt1 = rB.cross(cc.tangent1);
-  cc.rAxt2 = rA.cross(cc.tangent2);
-  cc.rBxt2 = rB.cross(cc.tangent2);
-  cc.iAt1 = iA * cc.rAxt1;
-  cc.iBt1 = iB * cc.rBxt1;
-  cc.iAt2 = iA * cc.rAxt2;
-  cc.iBt2 = iB * cc.rBxt2;
+  const Vec3 rAxt1 = rA.cross(t1), rBxt1 = rB.cross(t1), rAxt2 = rA.cross(t2), rBxt2 = rB.cross(t2);
+  const Vec3 iAt1 = iA * rAxt1, iBt1 = iB * rBxt1, iAt2 = iA * rAxt2, iBt2 = iB * rBxt2;
+  const Vec3 iAtw = iA * n, iBtw = iB * n;
+  cc.frictionLinear.set(0, t1);
+  cc.frictionLinear.set(1, t2);
+  cc.frictionLinear.set(2, Vec3::Zero());
+  cc.frictionLinear.set(3, Vec3::Zero());
+  cc.frictionAngularA.set(0, rAxt1);
+  cc.frictionAngularA.set(1, rAxt2);
+  cc.frictionAngularA.set(2, n);
+  cc.frictionAngularA.set(3, Vec3::Zero());
+  cc.frictionAngularB.set(0, rBxt1);
+  cc.frictionAngularB.set(1, rBxt2);
+  cc.frictionAngularB.set(2, n);
+  cc.frictionAngularB.set(3, Vec3::Zero());
+  cc.frictionInverseA.set(0, iAt1);
+  cc.frictionInverseA.set(1, iAt2);
+  cc.frictionInverseA.set(2, iAtw);
+  cc.frictionInverseA.set(3, Vec3::Zero());
+  cc.frictionInverseB.set(0, iBt1);
+  cc.frictionInverseB.set(1, iBt2);
+  cc.frictionInverseB.set(2, iBtw);
+  cc.frictionInverseB.set(3, Vec3::Zero());
   // The two tangent rows share lever arms, so they couple: solve them as a 2x2 block.
-  const float k11 = mSum + cc.rAxt1.dot(cc.iAt1) + cc.rBxt1.dot(cc.iBt1);
-  const float k22 = mSum + cc.rAxt2.dot(cc.iAt2) + cc.rBxt2.dot(cc.iBt2);
-  const float k12 = cc.rAxt1.dot(cc.iAt2) + cc.rBxt1.dot(cc.iBt2);
+  const float k11 = mSum + rAxt1.dot(iAt1) + rBxt1.dot(iBt1);
+  const float k22 = mSum + rAxt2.dot(iAt2) + rBxt2.dot(iBt2);
+  const float k12 = rAxt1.dot(iAt2) + rBxt1.dot(iBt2);
   const float det = k11 * k22 - k12 * k12;
   if (det > 1e-12f * std::max(1.0f, k11 * k22)) {
     const float inv = 1.0f / det;
@@ -285,36 +300,42 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   } else {
     cc.tangentMass[0][0] = cc.tangentMass[1][1] = cc.tangentMass[0][1] = cc.tangentMass[1][0] = 0.0f;
   }
-  cc.iAtw = iA * n;
-  cc.iBtw = iB * n;
-  const float kt = n.dot(cc.iAtw) + n.dot(cc.iBtw);
+  const float kt = n.dot(iAtw) + n.dot(iBtw);
   cc.twistMass = kt > 0.0f ? 1.0f / kt : 0.0f;
+  // The sweep solves the twist first and reads all three rows' velocities before it; the tangent
+  // rows then see the twist's impulse through these couplings, as if applied in between.
+  cc.twistCoupling[0] = rAxt1.dot(iAtw) + rBxt1.dot(iBtw);
+  cc.twistCoupling[1] = rAxt2.dot(iAtw) + rBxt2.dot(iBtw);
   // Twist friction of a contact patch: μ·N times the mean distance of the points from the centre.
   float radius = 0.0f;
   for (int i = 0; i < cc.count; ++i) radius += (contact.manifold.points[i].position - centre).norm();
   cc.twistRadius = radius / float(cc.count);
-  cc.blockExact = prepareBlockInverse(contact.manifold, centre, cc.tangent1, cc.tangent2, cc);
+  cc.blockExact = prepareBlockInverse(contact.manifold, centre, t1, t2, cc);
 
   if (p.warmStart) {
-    cc.tangentImpulse1 = contact.frictionImpulse.dot(cc.tangent1);
-    cc.tangentImpulse2 = contact.frictionImpulse.dot(cc.tangent2);
-    cc.twistImpulse = contact.twistImpulse * std::max(0.0f, contact.frictionNormal.dot(n));
+    cc.frictionImpulse[0] = contact.frictionImpulse.dot(t1);
+    cc.frictionImpulse[1] = contact.frictionImpulse.dot(t2);
+    cc.frictionImpulse[2] = contact.twistImpulse * std::max(0.0f, contact.frictionNormal.dot(n));
   } else {
-    cc.tangentImpulse1 = cc.tangentImpulse2 = cc.twistImpulse = 0.0f;
+    cc.frictionImpulse[0] = cc.frictionImpulse[1] = cc.frictionImpulse[2] = 0.0f;
   }
+  cc.frictionImpulse[3] = 0.0f;
 }
 
 namespace {
 
-inline void apply(BodyStore& bodies, const ContactConstraint& c, const Vec3& P, const Vec3& angA,
-                  const Vec3& angB) {
+// A body velocity as one vector (x, y, z, 0) while a manifold's rows are solved.
+inline F4 load3(const Vec3& v) { return F4{v.x(), v.y(), v.z(), 0.0f}; }
+inline void store3(Vec3& out, F4 v) { out = Vec3(v[0], v[1], v[2]); }
+
+inline void apply(BodyStore& bodies, const ContactConstraint& c, F4 P, F4 angA, F4 angB) {
   if (c.dynA) {
-    bodies.v[c.a] -= c.invMassA * P;
-    bodies.w[c.a] -= angA;
+    store3(bodies.v[c.a], load3(bodies.v[c.a]) - c.invMassA * P);
+    store3(bodies.w[c.a], load3(bodies.w[c.a]) - angA);
   }
   if (c.dynB) {
-    bodies.v[c.b] += c.invMassB * P;
-    bodies.w[c.b] += angB;
+    store3(bodies.v[c.b], load3(bodies.v[c.b]) + c.invMassB * P);
+    store3(bodies.w[c.b], load3(bodies.w[c.b]) + angB);
   }
 }
 
@@ -331,25 +352,41 @@ inline void clampToFrictionCircle(float& n1, float& n2, float limit) {
 
 namespace {
 
-// What impulses `a` on the four normal rows apply: Σ a_i n_i (linear) and Σ a_i I⁻¹(r×n)_i for
-// each body. Rows past the count are zero and add nothing.
+// What impulses `a` on four rows apply: Σ a_i lin_i (linear) and Σ a_i (I⁻¹ J_ang)_i for each
+// body. Zero rows add nothing.
+// Each is a vector (x, y, z, 0).
 struct RowImpulses {
-  Vec3 linear, angularA, angularB;
+  F4 linear, angularA, angularB;
 };
 
-inline RowImpulses rowImpulses(const ContactConstraint& c, F4 a) {
-  const F4 s1 = simd4::laneSums(a * load(c.normal.x), a * load(c.normal.y), a * load(c.normal.z), a * load(c.iAn.x));
-  const F4 s2 = simd4::laneSums(a * load(c.iAn.y), a * load(c.iAn.z), a * load(c.iBn.x), a * load(c.iBn.y));
-  return {Vec3(s1[0], s1[1], s1[2]), Vec3(s1[3], s2[0], s2[1]),
-          Vec3(s2[2], s2[3], simd4::laneSum(a * load(c.iBn.z)))};
+inline RowImpulses rowImpulses(const RowVectors& lin, const RowVectors& invA, const RowVectors& invB, F4 a) {
+  const F4 zero{};
+  return {simd4::laneSums(a * load(lin.x), a * load(lin.y), a * load(lin.z), zero),
+          simd4::laneSums(a * load(invA.x), a * load(invA.y), a * load(invA.z), zero),
+          simd4::laneSums(a * load(invB.x), a * load(invB.y), a * load(invB.z), zero)};
 }
 
-// J v of the four normal rows at the given body velocities.
-inline F4 rowVelocities(const ContactConstraint& c, const Vec3& va, const Vec3& wa, const Vec3& vb, const Vec3& wb) {
-  const Vec3 dv = vb - va;
-  return load(c.normal.x) * dv.x() + load(c.normal.y) * dv.y() + load(c.normal.z) * dv.z() +
-         (load(c.rBxn.x) * wb.x() + load(c.rBxn.y) * wb.y() + load(c.rBxn.z) * wb.z()) -
-         (load(c.rAxn.x) * wa.x() + load(c.rAxn.y) * wa.y() + load(c.rAxn.z) * wa.z());
+inline RowImpulses normalImpulses(const ContactConstraint& c, F4 a) { return rowImpulses(c.normal, c.iAn, c.iBn, a); }
+
+inline RowImpulses frictionImpulses(const ContactConstraint& c, F4 a) {
+  return rowImpulses(c.frictionLinear, c.frictionInverseA, c.frictionInverseB, a);
+}
+
+// J v of four rows at the given body velocities: lin·(vb − va) + angB·wb − angA·wa.
+inline F4 rowVelocities(const RowVectors& lin, const RowVectors& angA, const RowVectors& angB, F4 va, F4 wa, F4 vb,
+                        F4 wb) {
+  const F4 dv = vb - va;
+  return load(lin.x) * dv[0] + load(lin.y) * dv[1] + load(lin.z) * dv[2] +
+         (load(angB.x) * wb[0] + load(angB.y) * wb[1] + load(angB.z) * wb[2]) -
+         (load(angA.x) * wa[0] + load(angA.y) * wa[1] + load(angA.z) * wa[2]);
+}
+
+// Adds the velocity changes of row impulses r to the bodies' velocities.
+inline void applyImpulses(const ContactConstraint& c, const RowImpulses& r, F4& va, F4& wa, F4& vb, F4& wb) {
+  va -= c.invMassA * r.linear;
+  wa -= r.angularA;
+  vb += c.invMassB * r.linear;
+  wb += r.angularB;
 }
 
 // rowBias of the four rows.
@@ -365,11 +402,9 @@ void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n) {
   for (size_t k = 0; k < n; ++k) {
     const ContactConstraint& c = cs[k];
     if (c.count == 0) continue;
-    const RowImpulses r = rowImpulses(c, load(c.normalImpulse));
-    const Vec3 P = r.linear + (c.tangentImpulse1 * c.tangent1 + c.tangentImpulse2 * c.tangent2);
-    const Vec3 angA = r.angularA + (c.tangentImpulse1 * c.iAt1 + c.tangentImpulse2 * c.iAt2 + c.twistImpulse * c.iAtw);
-    const Vec3 angB = r.angularB + (c.tangentImpulse1 * c.iBt1 + c.tangentImpulse2 * c.iBt2 + c.twistImpulse * c.iBtw);
-    apply(bodies, c, P, angA, angB);
+    const RowImpulses r = normalImpulses(c, load(c.normalImpulse));
+    const RowImpulses f = frictionImpulses(c, load(c.frictionImpulse));
+    apply(bodies, c, r.linear + f.linear, r.angularA + f.angularA, r.angularB + f.angularB);
   }
 }
 
@@ -379,9 +414,9 @@ namespace {
 // (one 4-wide vector), updated through the coupling matrix while the exact block or a few projected
 // passes settle the split of the load, and the caller applies the net impulse change to the bodies
 // once. Returns the impulse change of each row (already added to c.normalImpulse).
-inline F4 solveNormalBlock(ContactConstraint& c, const Vec3& va, const Vec3& wa, const Vec3& vb, const Vec3& wb,
+inline F4 solveNormalBlock(ContactConstraint& c, F4 va, F4 wa, F4 vb, F4 wb,
                            float omega, bool useBias) {
-  F4 vn = rowVelocities(c, va, wa, vb, wb);
+  F4 vn = rowVelocities(c.normal, c.rAxn, c.rBxn, va, wa, vb, wb);
   const F4 bias = rowBiases(c, useBias);
   const F4 start = load(c.normalImpulse);
   if (c.blockExact) {
@@ -418,50 +453,34 @@ inline F4 solveNormalBlock(ContactConstraint& c, const Vec3& va, const Vec3& wa,
 
 // The parts of a sweep, inlined into solveIteration's loop (the exported functions below wrap them
 // for the chain solver): called out of line, large_pyramid's sweeps took 7% longer.
-[[gnu::always_inline]] inline void frictionRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb,
+[[gnu::always_inline]] inline void frictionRows(ContactConstraint& c, F4& va, F4& wa, F4& vb, F4& wb,
                                                  float omega) {
   // Bounded by the normal impulses of the previous sweep.
   const float limit = c.friction * simd4::laneSum(load(c.normalImpulse));
-  {
-    // Twist about the normal.
-    const float vt = c.twistAxis.dot(wb - wa);
-    const float maxTwist = limit * c.twistRadius;
-    const float old = c.twistImpulse;
-    c.twistImpulse = std::clamp(old - omega * c.twistMass * vt, -maxTwist, maxTwist);
-    const float applied = c.twistImpulse - old;
-    c.delta[kMaxManifoldPoints + 2] = applied;
-    wa -= applied * c.iAtw;
-    wb += applied * c.iBtw;
-  }
-  // Both tangent rows together, clamped to the friction circle |λt| <= μ λn: clamping each axis
-  // alone (a box) lets friction reach √2 μ λn and pushes a sliding body sideways.
-  const Vec3 dv = vb - va;
-  const float vt1 = c.tangent1.dot(dv) + c.rBxt1.dot(wb) - c.rAxt1.dot(wa);
-  const float vt2 = c.tangent2.dot(dv) + c.rBxt2.dot(wb) - c.rAxt2.dot(wa);
-  const float old1 = c.tangentImpulse1, old2 = c.tangentImpulse2;
-  float n1 = old1 - omega * (c.tangentMass[0][0] * vt1 + c.tangentMass[0][1] * vt2);
-  float n2 = old2 - omega * (c.tangentMass[1][0] * vt1 + c.tangentMass[1][1] * vt2);
+  const F4 vf = rowVelocities(c.frictionLinear, c.frictionAngularA, c.frictionAngularB, va, wa, vb, wb);
+  const F4 old = load(c.frictionImpulse);
+  // Twist about the normal first.
+  const float maxTwist = limit * c.twistRadius;
+  const float twist = std::clamp(old[2] - omega * c.twistMass * vf[2], -maxTwist, maxTwist);
+  const float twistApplied = twist - old[2];
+  // Both tangent rows together, at their velocities after the twist's impulse, clamped to the
+  // friction circle |λt| <= μ λn: clamping each axis alone (a box) lets friction reach √2 μ λn and
+  // pushes a sliding body sideways.
+  const float vt1 = vf[0] + c.twistCoupling[0] * twistApplied;
+  const float vt2 = vf[1] + c.twistCoupling[1] * twistApplied;
+  float n1 = old[0] - omega * (c.tangentMass[0][0] * vt1 + c.tangentMass[0][1] * vt2);
+  float n2 = old[1] - omega * (c.tangentMass[1][0] * vt1 + c.tangentMass[1][1] * vt2);
   clampToFrictionCircle(n1, n2, limit);
-  c.tangentImpulse1 = n1;
-  c.tangentImpulse2 = n2;
-  const float a1 = n1 - old1, a2 = n2 - old2;
-  c.delta[kMaxManifoldPoints] = a1;
-  c.delta[kMaxManifoldPoints + 1] = a2;
-  const Vec3 P = a1 * c.tangent1 + a2 * c.tangent2;
-  va -= c.invMassA * P;
-  wa -= a1 * c.iAt1 + a2 * c.iAt2;
-  vb += c.invMassB * P;
-  wb += a1 * c.iBt1 + a2 * c.iBt2;
+  const F4 next{n1, n2, twist, 0.0f};
+  const F4 applied = next - old;
+  store(c.frictionImpulse, next);
+  store(c.delta + kMaxManifoldPoints, applied);
+  applyImpulses(c, frictionImpulses(c, applied), va, wa, vb, wb);
 }
 
-[[gnu::always_inline]] inline float normalChange(ContactConstraint& c, F4 applied, Vec3& va, Vec3& wa, Vec3& vb,
-                                                 Vec3& wb) {
+[[gnu::always_inline]] inline float normalChange(ContactConstraint& c, F4 applied, F4& va, F4& wa, F4& vb, F4& wb) {
   store(c.delta, applied);  // the normal rows' changes; rows past the count are zero
-  const RowImpulses r = rowImpulses(c, applied);
-  va -= c.invMassA * r.linear;
-  wa -= r.angularA;
-  vb += c.invMassB * r.linear;
-  wb += r.angularB;
+  applyImpulses(c, normalImpulses(c, applied), va, wa, vb, wb);
   // |Δλ| / normalMass: the velocity correction of each row (K_ii = 1 / normalMass); rows without
   // a mass (degenerate, or past the count) do not count.
   const F4 diagonal{c.normalCoupling[0][0], c.normalCoupling[1][1], c.normalCoupling[2][2], c.normalCoupling[3][3]};
@@ -469,29 +488,37 @@ inline F4 solveNormalBlock(ContactConstraint& c, const Vec3& va, const Vec3& wa,
   return simd4::laneMax(simd4::abs(applied) * scale);
 }
 
-[[gnu::always_inline]] inline float normalRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb,
+[[gnu::always_inline]] inline float normalRows(ContactConstraint& c, F4& va, F4& wa, F4& vb, F4& wb,
                                                float omega, bool useBias) {
   return normalChange(c, solveNormalBlock(c, va, wa, vb, wb, omega, useBias), va, wa, vb, wb);
 }
 
 [[gnu::always_inline]] inline float rowsChange(const ContactConstraint& c) {
-  constexpr int t1 = kMaxManifoldPoints, t2 = kMaxManifoldPoints + 1, tw = kMaxManifoldPoints + 2;
-  const F4 dn = load(c.delta);
-  return simd4::laneSum(dn * dn) + (c.delta[t1] * c.delta[t1] + c.delta[t2] * c.delta[t2] + c.delta[tw] * c.delta[tw]);
+  const F4 dn = load(c.delta), df = load(c.delta + kMaxManifoldPoints);
+  return simd4::laneSum(dn * dn + df * df);
 }
 
 }  // namespace
 
+// The exported parts of a sweep, on velocities the caller holds as Vec3.
 void solveFrictionRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb, float omega) {
-  frictionRows(c, va, wa, vb, wb, omega);
+  F4 a = load3(va), b = load3(wa), d = load3(vb), e = load3(wb);
+  frictionRows(c, a, b, d, e, omega);
+  store3(va, a), store3(wa, b), store3(vb, d), store3(wb, e);
 }
 
 float applyNormalChange(ContactConstraint& c, const float* applied, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb) {
-  return normalChange(c, load(applied), va, wa, vb, wb);
+  F4 a = load3(va), b = load3(wa), d = load3(vb), e = load3(wb);
+  const float residual = normalChange(c, load(applied), a, b, d, e);
+  store3(va, a), store3(wa, b), store3(vb, d), store3(wb, e);
+  return residual;
 }
 
 float solveNormalRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb, float omega, bool useBias) {
-  return normalRows(c, va, wa, vb, wb, omega, useBias);
+  F4 a = load3(va), b = load3(wa), d = load3(vb), e = load3(wb);
+  const float residual = normalRows(c, a, b, d, e, omega, useBias);
+  store3(va, a), store3(wa, b), store3(vb, d), store3(wb, e);
+  return residual;
 }
 
 double squaredChange(const ContactConstraint& c) { return rowsChange(c); }
@@ -501,7 +528,8 @@ namespace {
 // A momentum direction starts from the constraint's last change (startDirection, and a sweep that
 // restarts it).
 inline void restartDirectionOf(ContactConstraint& c) {
-  for (int r = 0; r < ContactConstraint::kRows; ++r) c.direction[r] = c.delta[r];
+  store(c.direction, load(c.delta));
+  store(c.direction + kMaxManifoldPoints, load(c.delta + kMaxManifoldPoints));
 }
 
 template <bool Restart>
@@ -514,13 +542,20 @@ SweepResult sweep(BodyStore& bodies, ContactConstraint* cs, size_t n, float omeg
     if (c.count == 0) continue;
     // Static and kinematic bodies are read (their velocity is given) but never written, so
     // islands that share a static body can be solved concurrently.
-    Vec3 va = bodies.v[c.a], wa = bodies.w[c.a], vb = bodies.v[c.b], wb = bodies.w[c.b];
+    F4 va = load3(bodies.v[c.a]), wa = load3(bodies.w[c.a]), vb = load3(bodies.v[c.b]), wb = load3(bodies.w[c.b]);
     // Friction first; normal rows last: non-penetration matters more than friction, so each sweep
     // ends with the normal rows satisfied (see solveNormalBlock).
     frictionRows(c, va, wa, vb, wb, omega);
     residual = std::max(residual, normalRows(c, va, wa, vb, wb, omega, useBias));
     change += rowsChange(c);
-    storeVelocities(bodies, c, va, wa, vb, wb);
+    if (c.dynA) {
+      store3(bodies.v[c.a], va);
+      store3(bodies.w[c.a], wa);
+    }
+    if (c.dynB) {
+      store3(bodies.v[c.b], vb);
+      store3(bodies.w[c.b], wb);
+    }
   }
   return {residual, change};
 }
@@ -537,34 +572,28 @@ void startDirection(ContactConstraint* cs, size_t n) {
 }
 
 void accelerate(BodyStore& bodies, ContactConstraint* cs, size_t n, float beta) {
-  constexpr int t1 = kMaxManifoldPoints, t2 = kMaxManifoldPoints + 1, tw = kMaxManifoldPoints + 2;
   for (size_t k = 0; k < n; ++k) {
     ContactConstraint& c = cs[k];
     if (c.count == 0) continue;
     float* d = c.direction;
+    const F4 dn = load(d), df = load(d + kMaxManifoldPoints);
     const F4 old = load(c.normalImpulse);
-    const F4 next = simd4::clampNonNegative(old + beta * load(d));
+    const F4 next = simd4::clampNonNegative(old + beta * dn);
     store(c.normalImpulse, next);
-    const RowImpulses r = rowImpulses(c, next - old);
-    Vec3 P = r.linear, angA = r.angularA, angB = r.angularB;
-    const float normalTotal = simd4::laneSum(next);
     // Friction stays inside the cone of the new normal impulses.
-    const float limit = c.friction * normalTotal;
-    float n1 = c.tangentImpulse1 + beta * d[t1], n2 = c.tangentImpulse2 + beta * d[t2];
+    const float limit = c.friction * simd4::laneSum(next);
+    const F4 oldFriction = load(c.frictionImpulse);
+    const F4 step = oldFriction + beta * df;
+    float n1 = step[0], n2 = step[1];
     clampToFrictionCircle(n1, n2, limit);
-    const float a1 = n1 - c.tangentImpulse1, a2 = n2 - c.tangentImpulse2;
-    c.tangentImpulse1 = n1;
-    c.tangentImpulse2 = n2;
-    P += a1 * c.tangent1 + a2 * c.tangent2;
-    angA += a1 * c.iAt1 + a2 * c.iAt2;
-    angB += a1 * c.iBt1 + a2 * c.iBt2;
     const float maxTwist = limit * c.twistRadius;
-    const float twist = std::clamp(c.twistImpulse + beta * d[tw], -maxTwist, maxTwist);
-    angA += (twist - c.twistImpulse) * c.iAtw;
-    angB += (twist - c.twistImpulse) * c.iBtw;
-    c.twistImpulse = twist;
-    apply(bodies, c, P, angA, angB);
-    for (int r = 0; r < ContactConstraint::kRows; ++r) d[r] = beta * d[r] + c.delta[r];
+    const F4 nextFriction{n1, n2, std::clamp(step[2], -maxTwist, maxTwist), 0.0f};
+    store(c.frictionImpulse, nextFriction);
+    const RowImpulses r = normalImpulses(c, next - old);
+    const RowImpulses f = frictionImpulses(c, nextFriction - oldFriction);
+    apply(bodies, c, r.linear + f.linear, r.angularA + f.angularA, r.angularB + f.angularB);
+    store(d, beta * dn + load(c.delta));
+    store(d + kMaxManifoldPoints, beta * df + load(c.delta + kMaxManifoldPoints));
   }
 }
 
@@ -574,9 +603,9 @@ void storeImpulses(const ContactConstraint* cs, size_t n, Contact* contacts) {
     Contact& ct = contacts[c.contact];
     for (int i = 0; i < c.count; ++i) ct.normalImpulse[i] = c.normalImpulse[i];
     if (c.count == 0) continue;
-    ct.frictionImpulse = c.tangentImpulse1 * c.tangent1 + c.tangentImpulse2 * c.tangent2;
-    ct.twistImpulse = c.twistImpulse;
-    ct.frictionNormal = c.twistAxis;
+    ct.frictionImpulse = c.frictionImpulse[0] * c.tangent1() + c.frictionImpulse[1] * c.tangent2();
+    ct.twistImpulse = c.frictionImpulse[2];
+    ct.frictionNormal = c.twistAxis();
   }
 }
 

@@ -73,20 +73,29 @@ struct alignas(16) ContactConstraint {
 
   // Friction at the centre of the manifold. Friction per point would make the sliding torque
   // depend on how the load happens to be split among 4 coplanar points (a split the normal rows
-  // leave undetermined): a box sliding down a ramp spun about the normal.
-  Vec3 tangent1, tangent2, twistAxis;
-  Vec3 rAxt1, rBxt1, rAxt2, rBxt2;  // angular Jacobian parts of the tangent rows
-  Vec3 iAt1, iBt1, iAt2, iBt2;      // I^-1 times them
-  Vec3 iAtw, iBtw;                  // I^-1 times the twist axis
+  // leave undetermined): a box sliding down a ramp spun about the normal. Three rows, stored by
+  // component like the normal rows: tangent 1, tangent 2 and the twist about the mean normal
+  // (row 3 is zero).
+  RowVectors frictionLinear;                        // t1, t2, 0: the rows' linear part
+  RowVectors frictionAngularA, frictionAngularB;    // rA×t1, rA×t2, n and rB×t1, rB×t2, n
+  RowVectors frictionInverseA, frictionInverseB;    // I^-1 times them
   float tangentMass[2][2];          // inverse of the 2x2 block of the tangent rows
   float twistMass;                  // 1 / (n (I_A^-1 + I_B^-1) n)
   float twistRadius;                // lever (m) turning the friction limit into a twist limit
-  float tangentImpulse1, tangentImpulse2, twistImpulse;
+  float twistCoupling[2];           // K of each tangent row with the twist row
+  alignas(16) float frictionImpulse[4];  // tangent 1, tangent 2, twist, 0
+
+  Vec3 tangent1() const { return frictionLinear.row(0); }
+  Vec3 tangent2() const { return frictionLinear.row(1); }
+  Vec3 twistAxis() const { return frictionAngularA.row(2); }
 
   /// Rows in the order of `delta` and `direction`: the normal rows, then tangent 1, tangent 2, twist.
   static constexpr int kRows = kMaxManifoldPoints + 3;
-  alignas(16) float delta[kRows];      ///< impulse change of each row in the last sweep (unused rows stay 0)
-  alignas(16) float direction[kRows];  ///< conjugate direction of the accelerated solve (see accelerate)
+  /// Impulse change of each row in the last sweep (unused rows stay 0), and the conjugate direction
+  /// of the accelerated solve (see accelerate); one slot more than the rows, always 0, so each half
+  /// is one 4-wide vector.
+  alignas(16) float delta[kRows + 1];
+  alignas(16) float direction[kRows + 1];
 };
 
 /// Passes of projected Gauss-Seidel over a manifold's own normal rows per sweep, when the exact

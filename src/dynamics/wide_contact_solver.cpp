@@ -179,28 +179,28 @@ void packWide(const ContactConstraint* cs, int lanes, WideContactBatch& w) {
       }
     }
     w.blockExact[l] = c.blockExact && c.count > 1 ? -1 : 0;
-    setLane(w.tangent1, l, c.tangent1);
-    setLane(w.tangent2, l, c.tangent2);
-    setLane(w.twistAxis, l, c.twistAxis);
-    setLane(w.rAxt1, l, c.rAxt1);
-    setLane(w.rBxt1, l, c.rBxt1);
-    setLane(w.rAxt2, l, c.rAxt2);
-    setLane(w.rBxt2, l, c.rBxt2);
-    setLane(w.iAt1, l, c.iAt1);
-    setLane(w.iBt1, l, c.iBt1);
-    setLane(w.iAt2, l, c.iAt2);
-    setLane(w.iBt2, l, c.iBt2);
-    setLane(w.iAtw, l, c.iAtw);
-    setLane(w.iBtw, l, c.iBtw);
+    setLane(w.tangent1, l, c.tangent1());
+    setLane(w.tangent2, l, c.tangent2());
+    setLane(w.twistAxis, l, c.twistAxis());
+    setLane(w.rAxt1, l, c.frictionAngularA.row(0));
+    setLane(w.rBxt1, l, c.frictionAngularB.row(0));
+    setLane(w.rAxt2, l, c.frictionAngularA.row(1));
+    setLane(w.rBxt2, l, c.frictionAngularB.row(1));
+    setLane(w.iAt1, l, c.frictionInverseA.row(0));
+    setLane(w.iBt1, l, c.frictionInverseB.row(0));
+    setLane(w.iAt2, l, c.frictionInverseA.row(1));
+    setLane(w.iBt2, l, c.frictionInverseB.row(1));
+    setLane(w.iAtw, l, c.frictionInverseA.row(2));
+    setLane(w.iBtw, l, c.frictionInverseB.row(2));
     w.tangentMass00[l] = c.tangentMass[0][0];
     w.tangentMass01[l] = c.tangentMass[0][1];
     w.tangentMass10[l] = c.tangentMass[1][0];
     w.tangentMass11[l] = c.tangentMass[1][1];
     w.twistMass[l] = c.twistMass;
     w.twistRadius[l] = c.twistRadius;
-    w.tangentImpulse1[l] = c.tangentImpulse1;
-    w.tangentImpulse2[l] = c.tangentImpulse2;
-    w.twistImpulse[l] = c.twistImpulse;
+    w.tangentImpulse1[l] = c.frictionImpulse[0];
+    w.tangentImpulse2[l] = c.frictionImpulse[1];
+    w.twistImpulse[l] = c.frictionImpulse[2];
     for (int r = 0; r < ContactConstraint::kRows; ++r) {
       w.delta[r][l] = c.delta[r];
       w.direction[r][l] = c.direction[r];
@@ -213,9 +213,9 @@ void unpackWideImpulses(const WideContactBatch& w, ContactConstraint* cs) {
     ContactConstraint& c = cs[l];
     if (!(w.active & (1u << l))) continue;
     for (int i = 0; i < c.count; ++i) c.normalImpulse[i] = w.normalImpulse[i][l];
-    c.tangentImpulse1 = w.tangentImpulse1[l];
-    c.tangentImpulse2 = w.tangentImpulse2[l];
-    c.twistImpulse = w.twistImpulse[l];
+    c.frictionImpulse[0] = w.tangentImpulse1[l];
+    c.frictionImpulse[1] = w.tangentImpulse2[l];
+    c.frictionImpulse[2] = w.twistImpulse[l];
   }
 }
 

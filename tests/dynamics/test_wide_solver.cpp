@@ -115,12 +115,12 @@ TEST(WideSolver, SweepsAndMomentumMatchTheScalarSolver) {
   for (int l = 0; l < kLanes; ++l) {
     for (int i = 0; i < cs[l].count; ++i)
       EXPECT_NEAR(cw[l].normalImpulse[i], cs[l].normalImpulse[i], 2e-5f) << "lane " << l << " point " << i;
-    EXPECT_NEAR(cw[l].tangentImpulse1, cs[l].tangentImpulse1, 2e-5f) << "lane " << l;
-    EXPECT_NEAR(cw[l].tangentImpulse2, cs[l].tangentImpulse2, 2e-5f) << "lane " << l;
-    EXPECT_NEAR(cw[l].twistImpulse, cs[l].twistImpulse, 2e-5f) << "lane " << l;
+    EXPECT_NEAR(cw[l].frictionImpulse[0], cs[l].frictionImpulse[0], 2e-5f) << "lane " << l;
+    EXPECT_NEAR(cw[l].frictionImpulse[1], cs[l].frictionImpulse[1], 2e-5f) << "lane " << l;
+    EXPECT_NEAR(cw[l].frictionImpulse[2], cs[l].frictionImpulse[2], 2e-5f) << "lane " << l;
     float total = 0.0f;
     for (int i = 0; i < cs[l].count; ++i) total += cs[l].normalImpulse[i];
-    const float t = std::hypot(cs[l].tangentImpulse1, cs[l].tangentImpulse2);
+    const float t = std::hypot(cs[l].frictionImpulse[0], cs[l].frictionImpulse[1]);
     sawClamp |= total > 0.0f && std::fabs(t - cs[l].friction * total) < 1e-4f * total;
     sawBounce |= cs[l].restitutionBias[0] < 0.0f;
   }
