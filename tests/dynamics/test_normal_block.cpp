@@ -119,5 +119,48 @@ TEST(NormalBlock, DifferentNormalsAreLeftToThePasses) {
   EXPECT_FALSE(c.blockExact);
 }
 
+TEST(NormalBlock, PlaneBlockIsThePseudoInverseOfTheCouplingOnItsRange) {
+  // Two dynamic bodies with unequal, turned inertias, a tilted contact plane and an irregular
+  // quadrilateral of points at different depths: G must satisfy K G K = K and G K G = G, and
+  // solve any loaded right-hand side exactly (K G b = b for b in K's range).
+  BodyStore bodies;
+  Transform ta, tb;
+  ta.p = Vec3(0.3f, -0.6f, 0.2f);
+  ta.q = Quat(Eigen::AngleAxisf(0.7f, Vec3(1.0f, 2.0f, 0.5f).normalized()));
+  tb.p = Vec3(-0.2f, 0.9f, 0.4f);
+  tb.q = Quat(Eigen::AngleAxisf(-1.1f, Vec3(0.3f, 0.2f, 1.0f).normalized()));
+  bodies.add(BodyKind::Dynamic, ta, 2.0f, Vec3(0.9f, 2.5f, 4.0f).asDiagonal());
+  bodies.add(BodyKind::Dynamic, tb, 0.5f, Vec3(6.0f, 1.5f, 3.0f).asDiagonal());
+  Contact contact;
+  contact.a = 0;
+  contact.b = 1;
+  contact.friction = 0.5f;
+  const Vec3 n = Vec3(0.2f, 1.0f, -0.3f).normalized();
+  Vec3 u, w;
+  orthonormalBasis(n, u, w);
+  const float st[4][2] = {{-0.4f, -0.3f}, {0.6f, -0.2f}, {0.3f, 0.5f}, {-0.5f, 0.35f}};
+  contact.manifold.count = 4;
+  for (int i = 0; i < 4; ++i) {
+    ContactPoint& p = contact.manifold.points[i];
+    p.position = Vec3(0.05f, 0.1f, 0.3f) + st[i][0] * u + st[i][1] * w + 0.01f * float(i) * n;
+    p.normal = n;
+    p.depth = 0.002f * float(i);
+    p.id = uint32_t(i);
+  }
+  ContactConstraint c;
+  prepareContact(bodies, contact, 0, params(), c);
+  ASSERT_TRUE(c.blockExact);
+  Eigen::Matrix4d K, G;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      K(i, j) = c.normalCoupling[i][j];
+      G(i, j) = c.blockInverse[i][j];
+    }
+  EXPECT_LT((K * G * K - K).norm(), 1e-4 * K.norm());
+  EXPECT_LT((G * K * G - G).norm(), 1e-4 * G.norm());
+  const Eigen::Vector4d b = K * Eigen::Vector4d(1.0, -2.0, 0.5, 3.0);
+  EXPECT_LT((K * (G * b) - b).norm(), 1e-4 * b.norm());
+}
+
 }  // namespace
 }  // namespace haif
