@@ -137,6 +137,36 @@ bool blockInverseOf(const float coupling[kMaxManifoldPoints][kMaxManifoldPoints]
   return true;
 }
 
+// blockInverseOf for a rank-3 basis (a patch of 3 or 4 points, the common case), on 4-wide double
+// vectors: the same products, a column of K B or a row of A⁻¹ Bᵀ per vector. Rows of K and B past
+// the point count are zero, so they drop out.
+bool patchBlockInverse(const float coupling[kMaxManifoldPoints][kMaxManifoldPoints],
+                       const double B[kMaxManifoldPoints][3], float G[kMaxManifoldPoints][kMaxManifoldPoints]) {
+  using D4 = double __attribute__((vector_size(4 * sizeof(double))));
+  D4 Bc[3], KB[3];  // columns of B and of K B
+  for (int a = 0; a < 3; ++a) Bc[a] = D4{B[0][a], B[1][a], B[2][a], B[3][a]};
+  for (int a = 0; a < 3; ++a) KB[a] = D4{};
+  for (int j = 0; j < kMaxManifoldPoints; ++j) {
+    const D4 Kj{coupling[j][0], coupling[j][1], coupling[j][2], coupling[j][3]};  // column j (K is symmetric)
+    for (int a = 0; a < 3; ++a) KB[a] += Kj * B[j][a];
+  }
+  double A[3][3];
+  for (int a = 0; a < 3; ++a)
+    for (int b = a; b < 3; ++b) {
+      const D4 p = Bc[a] * KB[b];
+      A[a][b] = A[b][a] = (p[0] + p[1]) + (p[2] + p[3]);
+    }
+  double inv[3][3];
+  if (!invertSymmetric3(A, inv, 1e-6)) return false;
+  D4 C[3];  // rows of A⁻¹ Bᵀ
+  for (int a = 0; a < 3; ++a) C[a] = inv[a][0] * Bc[0] + inv[a][1] * Bc[1] + inv[a][2] * Bc[2];
+  for (int i = 0; i < kMaxManifoldPoints; ++i) {
+    const D4 g = B[i][0] * C[0] + B[i][1] * C[1] + B[i][2] * C[2];
+    for (int j = i; j < kMaxManifoldPoints; ++j) G[i][j] = G[j][i] = float(g[j]);
+  }
+  return true;
+}
+
 // Builds cc.blockInverse (see ContactConstraint) from the manifold's point positions and the
 // coupling matrix; false when the block must be solved by passes alone.
 bool prepareBlockInverse(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
@@ -150,10 +180,9 @@ bool prepareBlockInverse(const Manifold& mf, const Vec3& centre, const Vec3& t1,
   const int k = manifoldBasis(mf, centre, t1, t2, B);
   const auto& K = cc.normalCoupling;
   auto& G = cc.blockInverse;
+  if (k == 3) return patchBlockInverse(K, B, G);
   switch (m * 4 + k) {
-    case 4 * 4 + 3: return blockInverseOf<4, 3>(K, B, G);
     case 4 * 4 + 2: return blockInverseOf<4, 2>(K, B, G);
-    case 3 * 4 + 3: return blockInverseOf<3, 3>(K, B, G);
     case 3 * 4 + 2: return blockInverseOf<3, 2>(K, B, G);
     case 2 * 4 + 2: return blockInverseOf<2, 2>(K, B, G);
     default: return false;  // rank 1: all points in one place
