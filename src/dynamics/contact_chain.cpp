@@ -396,10 +396,10 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
   double change = 0.0;
   for (uint32_t j = 0; j < n; ++j) {
     const ContactConstraint& c = cs[j];
-    // |Δλ| K_ii: the velocity correction of the row over the whole sweep.
+    // |Δλ| K_ii (K_ii = 1 / normalMass): the velocity correction of the row over the whole sweep.
     for (int i = 0; i < c.count; ++i)
       if (c.normalMass[i] > 0.0f)
-        residual = std::max(residual, std::fabs(c.delta[i]) * c.normalCoupling[i][i]);
+        residual = std::max(residual, std::fabs(c.delta[i]) / c.normalMass[i]);
     change += squaredChange(c);
   }
   return {residual, change};

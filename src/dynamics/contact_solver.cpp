@@ -92,6 +92,21 @@ int manifoldBasis(const Manifold& mf, const Vec3& centre, const Vec3& t1, const 
   return pointBasis(coords, mf.count, (1u << mf.count) - 1u, B);
 }
 
+void normalCoupling(const ContactConstraint& c, float K[kMaxManifoldPoints][kMaxManifoldPoints]) {
+  const float mSum = c.invMassA + c.invMassB;
+  const F4 nx = load(c.normal.x), ny = load(c.normal.y), nz = load(c.normal.z);
+  const F4 iAnX = load(c.iAn.x), iAnY = load(c.iAn.y), iAnZ = load(c.iAn.z);
+  const F4 iBnX = load(c.iBn.x), iBnY = load(c.iBn.y), iBnZ = load(c.iBn.z);
+  for (int i = 0; i < kMaxManifoldPoints; ++i) {
+    const F4 row = mSum * (c.normal.x[i] * nx + c.normal.y[i] * ny + c.normal.z[i] * nz) +
+                   (c.rAxn.x[i] * iAnX + c.rAxn.y[i] * iAnY + c.rAxn.z[i] * iAnZ) +
+                   (c.rBxn.x[i] * iBnX + c.rBxn.y[i] * iBnY + c.rBxn.z[i] * iBnZ);
+    store(K[i], row);
+  }
+  for (int i = 0; i < kMaxManifoldPoints; ++i)  // exactly symmetric: the solver reads rows as columns
+    for (int j = i + 1; j < kMaxManifoldPoints; ++j) K[j][i] = K[i][j];
+}
+
 namespace {
 
 // G = B (Bᵀ K B)⁻¹ Bᵀ for M points and a basis of rank Kb, with the loop bounds known at compile
@@ -178,7 +193,8 @@ bool prepareBlockInverse(const Manifold& mf, const Vec3& centre, const Vec3& t1,
     if ((cc.normal.row(i) - n0).squaredNorm() > 1e-8f) return false;
   double B[kMaxManifoldPoints][3];
   const int k = manifoldBasis(mf, centre, t1, t2, B);
-  const auto& K = cc.normalCoupling;
+  float K[kMaxManifoldPoints][kMaxManifoldPoints];
+  normalCoupling(cc, K);
   auto& G = cc.blockInverse;
   if (k == 3) return patchBlockInverse(K, B, G);
   switch (m * 4 + k) {
@@ -270,18 +286,7 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   store(cc.bias, depth < 0.0f ? -speculative : -push);
   store(cc.restitutionBias,
         contact.restitution > 0.0f ? (vn < -p.restitutionThreshold ? contact.restitution * vn : F4{}) : F4{});
-  store(cc.relaxBias, -speculative);
   store(cc.normalImpulse, p.warmStart ? warm : F4{});
-  // Coupling of the rows, symmetric (the solver reads rows as columns); rows and columns past the
-  // count come out zero.
-  for (int i = 0; i < kMaxManifoldPoints; ++i) {
-    const F4 row = mSum * (nx[i] * nx + ny[i] * ny + nz[i] * nz) +
-                   (rAxnX[i] * iAnX + rAxnY[i] * iAnY + rAxnZ[i] * iAnZ) +
-                   (rBxnX[i] * iBnX + rBxnY[i] * iBnY + rBxnZ[i] * iBnZ);
-    store(cc.normalCoupling[i], row);
-  }
-  for (int i = 0; i < kMaxManifoldPoints; ++i)
-    for (int j = i + 1; j < kMaxManifoldPoints; ++j) cc.normalCoupling[j][i] = cc.normalCoupling[i][j];
 
   for (int r = 0; r <= ContactConstraint::kRows; ++r) cc.delta[r] = cc.direction[r] = 0.0f;
   cc.blockExact = false;
@@ -422,7 +427,7 @@ inline void applyImpulses(const ContactConstraint& c, const RowImpulses& r, F4& 
 inline F4 rowBiases(const ContactConstraint& c, bool useBias) {
   if (useBias) return load(c.bias);
   const F4 bounce = load(c.restitutionBias);
-  return (bounce < 0.0f) & (load(c.normalImpulse) > 0.0f) ? bounce : load(c.relaxBias);
+  return (bounce < 0.0f) & (load(c.normalImpulse) > 0.0f) ? bounce : simd4::clampNonNegative(load(c.bias));
 }
 
 }  // namespace
@@ -460,6 +465,8 @@ inline F4 solveNormalBlock(ContactConstraint& c, F4 va, F4 wa, F4 vb, F4 wb,
       return next - start;
     }
   }
+  float K[kMaxManifoldPoints][kMaxManifoldPoints];
+  normalCoupling(c, K);
   float lambda[kMaxManifoldPoints];
   store(lambda, start);
   const int passes = c.count > 1 ? kManifoldNormalPasses : 1;
@@ -471,7 +478,7 @@ inline F4 solveNormalBlock(ContactConstraint& c, F4 va, F4 wa, F4 vb, F4 wb,
       const float d = lambda[i] - old;
       if (d == 0.0f) continue;
       moved = true;
-      vn += load(c.normalCoupling[i]) * d;  // K is symmetric: row i is column i
+      vn += load(K[i]) * d;  // K is symmetric: row i is column i
     }
     if (!moved) break;  // a pass that changed nothing ends the block solve (separated contacts: at once)
   }
@@ -512,9 +519,8 @@ inline F4 solveNormalBlock(ContactConstraint& c, F4 va, F4 wa, F4 vb, F4 wb,
   applyImpulses(c, normalImpulses(c, applied), va, wa, vb, wb);
   // |Δλ| / normalMass: the velocity correction of each row (K_ii = 1 / normalMass); rows without
   // a mass (degenerate, or past the count) do not count.
-  const F4 diagonal{c.normalCoupling[0][0], c.normalCoupling[1][1], c.normalCoupling[2][2], c.normalCoupling[3][3]};
-  const F4 scale = load(c.normalMass) > 0.0f ? diagonal : F4{};
-  return simd4::laneMax(simd4::abs(applied) * scale);
+  const F4 mass = load(c.normalMass);
+  return simd4::laneMax(mass > 0.0f ? simd4::abs(applied) / mass : F4{});
 }
 
 [[gnu::always_inline]] inline float normalRows(ContactConstraint& c, F4& va, F4& wa, F4& vb, F4& wb,

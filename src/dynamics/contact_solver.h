@@ -48,8 +48,9 @@ struct alignas(16) ContactConstraint {
   RowVectors rAxn, rBxn;   // angular Jacobian parts
   RowVectors iAn, iBn;     // I^-1 times the angular parts
   alignas(16) float normalMass[kMaxManifoldPoints];       // 1 / (J M^-1 J^T)
-  alignas(16) float bias[kMaxManifoldPoints];             // b of the row (velocity, m/s)
-  alignas(16) float relaxBias[kMaxManifoldPoints];        // b without position correction (relax pass)
+  // b of the row in a main sweep (velocity, m/s): the speculative gap closing when positive, the
+  // push-out when negative. A relax sweep keeps the positive part only (max(b, 0), no push-out).
+  alignas(16) float bias[kMaxManifoldPoints];
   alignas(16) float restitutionBias[kMaxManifoldPoints];  // b of a bounce (e times the approach speed), or 0
   alignas(16) float normalImpulse[kMaxManifoldPoints];
   uint32_t a, b;               // body ids
@@ -58,10 +59,6 @@ struct alignas(16) ContactConstraint {
   bool dynA, dynB;             // only dynamic bodies receive velocity changes
   float friction;
   int count;
-  /// Coupling of the normal rows: K[i][j] = J_i M^-1 J_j^T. The normal rows of one manifold are
-  /// solved together against it (see solveIteration), which keeps the torque a manifold carries
-  /// consistent within each sweep.
-  alignas(16) float normalCoupling[kMaxManifoldPoints][kMaxManifoldPoints];
   /// Exact solve of the normal block while every point stays loaded: Δλ = G (−J v − b), with
   /// G = B (BᵀKB)⁻¹ Bᵀ. When the points share one normal, each normal row is an affine function of
   /// its point's position in the contact plane, so K has rank ≤ 3 and B = [1, u, w] (u, w: the
@@ -142,8 +139,15 @@ inline float rowVelocity(const ContactConstraint& c, int i, const Vec3& va, cons
 /// bounce in a relax sweep.
 inline float rowBias(const ContactConstraint& c, int i, bool useBias) {
   return useBias ? c.bias[i]
-                 : (c.restitutionBias[i] < 0.0f && c.normalImpulse[i] > 0.0f ? c.restitutionBias[i] : c.relaxBias[i]);
+                 : (c.restitutionBias[i] < 0.0f && c.normalImpulse[i] > 0.0f ? c.restitutionBias[i]
+                                                                               : (c.bias[i] > 0.0f ? c.bias[i] : 0.0f));
 }
+
+/// Coupling of the normal rows: K[i][j] = J_i M^-1 J_j^T (rows and columns past the count are zero).
+/// The normal rows of a manifold are solved together against it. It is computed from the rows when
+/// needed rather than stored: only the projected passes use it, which a manifold of a resting pile
+/// seldom runs, and its 64 bytes made every sweep over a giant island stream more memory.
+void normalCoupling(const ContactConstraint& c, float K[kMaxManifoldPoints][kMaxManifoldPoints]);
 
 /// Writes a manifold's body velocities back after solving its rows. Static and kinematic bodies are
 /// read (their velocity is given) but never written, so islands that share one solve concurrently.

@@ -162,6 +162,8 @@ void packWide(const ContactConstraint* cs, int lanes, WideContactBatch& w) {
     w.invMassA[l] = c.invMassA;
     w.invMassB[l] = c.invMassB;
     w.friction[l] = c.friction;
+    float K[kMaxManifoldPoints][kMaxManifoldPoints];
+    normalCoupling(c, K);
     for (int i = 0; i < c.count; ++i) {
       setLane(w.normal[i], l, c.normal.row(i));
       setLane(w.rAxn[i], l, c.rAxn.row(i));
@@ -170,11 +172,11 @@ void packWide(const ContactConstraint* cs, int lanes, WideContactBatch& w) {
       setLane(w.iBn[i], l, c.iBn.row(i));
       w.normalMass[i][l] = c.normalMass[i];
       w.bias[i][l] = c.bias[i];
-      w.relaxBias[i][l] = c.relaxBias[i];
+      w.relaxBias[i][l] = c.bias[i] > 0.0f ? c.bias[i] : 0.0f;
       w.restitutionBias[i][l] = c.restitutionBias[i];
       w.normalImpulse[i][l] = c.normalImpulse[i];
       for (int j = 0; j < c.count; ++j) {
-        w.coupling[i][j][l] = c.normalCoupling[i][j];
+        w.coupling[i][j][l] = K[i][j];
         w.blockInverse[i][j][l] = c.blockExact ? c.blockInverse[i][j] : 0.0f;
       }
     }
