@@ -86,7 +86,7 @@ bool samePoint(const BenchPoint& a, const BenchPoint& b) {
 int commandBench(int argc, char** argv) {
   CommandLine cl("bench",
                  {"--scenes", "--engines", "--steps", "--budget-ms", "--threads", "--out", "--error-every",
-                  "--iterations", "--budgets"},
+                  "--iterations", "--budgets", "--repeat"},
                  {"--quick"});
   std::string error;
   if (!cl.parse(argc, argv, 2, error)) {
@@ -95,10 +95,11 @@ int commandBench(int argc, char** argv) {
   }
   const bool isQuick = cl.has("--quick");
   // --quick: fewer scenes, steps and sweep points, to finish in a few minutes on a small machine.
-  int steps = isQuick ? 120 : 300, threads = int(tbb::info::default_concurrency()), errorEvery = 0;
+  int steps = isQuick ? 120 : 300, threads = int(tbb::info::default_concurrency()), errorEvery = 0, rounds = 1;
   double seedBudget = 4.0;
   std::vector<double> iterations, budgets;
-  if (!cl.getInt("--steps", 1, 1000000, steps, error) || !cl.getInt("--threads", 1, 1024, threads, error)) {
+  if (!cl.getInt("--steps", 1, 1000000, steps, error) || !cl.getInt("--threads", 1, 1024, threads, error) ||
+      !cl.getInt("--repeat", 1, 100, rounds, error)) {
     std::fprintf(stderr, "%s\n", error.c_str());
     return 2;
   }
@@ -172,23 +173,30 @@ int commandBench(int argc, char** argv) {
   if (haif) add(point("haif", "adaptive", seedBudget, threads));
   if (bullet) add(point("bullet", "fixed", 10, 1));
 
+  // --repeat: every set-up of a scene runs once per round, rounds one after another, so set-ups
+  // that are compared see the same drifts of the machine's speed.
   std::vector<BenchResult> rows;
   for (const std::string& path : paths) {
-    for (const BenchPoint& p : points) {
-      BenchResult r;
-      if (!runBenchPoint(path, p, steps, errorEvery, r, error)) {
-        std::fprintf(stderr, "%s\n", error.c_str());
-        return 1;
+    std::vector<std::vector<BenchResult>> runs(points.size());
+    for (int round = 0; round < rounds; ++round) {
+      for (size_t i = 0; i < points.size(); ++i) {
+        BenchResult r;
+        if (!runBenchPoint(path, points[i], steps, errorEvery, r, error)) {
+          std::fprintf(stderr, "%s\n", error.c_str());
+          return 1;
+        }
+        char solveError[32] = "n/a", roundText[32] = "";
+        if (!std::isnan(r.solveError)) std::snprintf(solveError, sizeof solveError, "%.4f", r.solveError);
+        if (rounds > 1) std::snprintf(roundText, sizeof roundText, "  (round %d/%d)", round + 1, rounds);
+        std::printf("%-14s %-22s %2d thr  %9.3f ms/step (p95 %9.3f)  solve error %-7s  max pen %.4f m  "
+                    "mean drop %.4f m  jitter %.4f m/s%s%s\n",
+                    r.scene.c_str(), r.label.c_str(), r.threads, r.msMedian, r.msP95, solveError,
+                    r.maxPenetration, r.meanDrop, r.jitter, r.nan ? "  NaN!" : "", roundText);
+        std::fflush(stdout);
+        runs[i].push_back(std::move(r));
       }
-      char solveError[32] = "n/a";
-      if (!std::isnan(r.solveError)) std::snprintf(solveError, sizeof solveError, "%.4f", r.solveError);
-      std::printf("%-14s %-22s %2d thr  %9.3f ms/step (p95 %9.3f)  solve error %-7s  max pen %.4f m  "
-                  "mean drop %.4f m  jitter %.4f m/s%s\n",
-                  r.scene.c_str(), r.label.c_str(), r.threads, r.msMedian, r.msP95, solveError, r.maxPenetration,
-                  r.meanDrop, r.jitter, r.nan ? "  NaN!" : "");
-      std::fflush(stdout);
-      rows.push_back(std::move(r));
     }
+    for (const std::vector<BenchResult>& r : runs) rows.push_back(combineRounds(r));
   }
 
   BenchReportInfo info;
@@ -197,6 +205,7 @@ int commandBench(int argc, char** argv) {
   info.errorEvery = errorEvery;
   info.seedBudgetMs = seedBudget;
   info.quick = isQuick;
+  info.rounds = rounds;
   info.engines = engines;
   if (!benchPlotsAvailable()) info.plotsNote = "this haif was built without the renderer (HAIF_BUILD_RENDER=OFF)";
   if (!writeBenchPlots(outDir, rows, info.plots, error) ||

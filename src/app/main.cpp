@@ -22,7 +22,7 @@ void usage(FILE* out) {
       "                  the seed's table (sequential / HAIF / Bullet); results.csv, report.md, plots\n"
       "                  [--scenes a,b,..] [--engines haif,bullet] [--quick] [--steps N] [--threads T]\n"
       "                  [--iterations 1,2,..] [--budgets 1,2,..] [--budget-ms B] [--error-every K]\n"
-      "                  [--out DIR]\n"
+      "                  [--repeat R] [--out DIR]\n"
       "  calibrate       measure this machine's cost model [--out FILE] [--threads T]\n"
       "  compare SCENE   two solver set-ups of one scene side by side in one video\n"
       "                  --left SPEC --right SPEC  (SPEC: fixed:N, adaptive:MS, model:MS, replay:STATS.csv,\n"

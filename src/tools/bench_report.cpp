@@ -74,16 +74,17 @@ std::string benchResultsCsv(const std::vector<BenchResult>& rows) {
       "scene,bodies,engine,mode,param,label,threads,steps,ms_per_step_median,ms_per_step_p95,"
       "cpu_ms_per_step_median,fps,iterations_mean,deadline_miss_rate,solve_error_mean,max_penetration_m,"
       "rms_penetration_m,max_penetration_fraction,mean_drop_m,max_drop_m,jitter_rms_velocity_m_s,nan_detected,"
-      "state_hash\n";
+      "state_hash,rounds,ms_per_step_min,ms_per_step_max\n";
   char line[1024];
   for (const BenchResult& r : rows) {
     std::snprintf(line, sizeof line,
                   "%s,%u,%s,%s,%g,%s,%d,%d,%.4f,%.4f,%.4f,%.1f,%.2f,%.4f,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,"
-                  "%016" PRIx64 "\n",
+                  "%016" PRIx64 ",%d,%.4f,%.4f\n",
                   r.scene.c_str(), r.bodies, r.engine.c_str(), r.mode.c_str(), r.param, r.label.c_str(), r.threads,
                   r.steps, r.msMedian, r.msP95, r.cpuMsMedian, r.msMedian > 0.0 ? 1000.0 / r.msMedian : 0.0,
                   r.iterationsMean, r.missRate, fmt("%.6g", r.solveError).c_str(), r.maxPenetration, r.rmsPenetration,
-                  r.maxPenetrationFraction, r.meanDrop, r.maxDrop, r.jitter, r.nan ? 1 : 0, r.stateHash);
+                  r.maxPenetrationFraction, r.meanDrop, r.maxDrop, r.jitter, r.nan ? 1 : 0, r.stateHash, r.rounds,
+                  r.msMin, r.msMax);
     csv += line;
   }
   return csv;
@@ -100,7 +101,13 @@ std::string benchReportMarkdown(const std::vector<BenchResult>& rows, const Benc
         "; HAIF on " + std::to_string(info.threads) + " thread(s), Bullet on 1. Solve error (DESIGN.md §5) " +
         (info.errorEvery > 0 ? "sampled every " + std::to_string(info.errorEvery) + " steps" : "not measured") +
         "; penetration, drop and jitter computed by the same code for every engine from body states and contact "
-        "depths. ms/step is the median / p95 wall time of a step.\n\n";
+        "depths. ms/step is the median / p95 wall time of a step.";
+  if (info.rounds > 1)
+    md += " Every set-up ran " + std::to_string(info.rounds) +
+          " times, in rotation with the others (each round runs every set-up of a scene once), so that set-ups "
+          "compared with each other saw the same drifts of the machine's speed; the tables give the median of "
+          "a set-up's runs (their fastest and slowest medians are in results.csv).";
+  md += "\n\n";
 
   md += "## The seed's table: sequential, HAIF and Bullet\n\n"
         "Sequential: HAIF fixed:10 on 1 thread. HAIF: adaptive, " + budget + " ms budget, " +

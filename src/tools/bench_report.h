@@ -16,6 +16,7 @@ struct BenchReportInfo {
   int errorEvery = 0;           ///< solve error sampled every this many steps (0: off)
   double seedBudgetMs = 4.0;    ///< HAIF's budget in the seed's table
   bool quick = false;
+  int rounds = 1;               ///< runs per set-up (--repeat)
   std::vector<std::string> engines;
   std::vector<std::string> plots;  ///< PNG file names next to report.md
   std::string plotsNote;           ///< why there are no plots (empty: there are)

@@ -3,6 +3,7 @@
 #include "tools/engine_metrics.h"
 #include "tools/run_report.h"
 
+#include <algorithm>
 #include <ctime>
 
 namespace haif {
@@ -16,6 +17,26 @@ double processCpuMs() {
 }
 
 }  // namespace
+
+BenchResult combineRounds(const std::vector<BenchResult>& runs) {
+  auto lowerMedian = [&](double BenchResult::*field) {
+    std::vector<double> v;
+    for (const BenchResult& r : runs) v.push_back(r.*field);
+    std::nth_element(v.begin(), v.begin() + (v.size() - 1) / 2, v.end());
+    return v[(v.size() - 1) / 2];
+  };
+  const double ms = lowerMedian(&BenchResult::msMedian);
+  BenchResult out = *std::find_if(runs.begin(), runs.end(), [&](const BenchResult& r) { return r.msMedian == ms; });
+  out.msP95 = lowerMedian(&BenchResult::msP95);
+  out.cpuMsMedian = lowerMedian(&BenchResult::cpuMsMedian);
+  out.rounds = int(runs.size());
+  out.msMin = out.msMax = ms;
+  for (const BenchResult& r : runs) {
+    out.msMin = std::min(out.msMin, r.msMedian);
+    out.msMax = std::max(out.msMax, r.msMedian);
+  }
+  return out;
+}
 
 bool runBenchPoint(const std::string& scenePath, const BenchPoint& point, int steps, int errorEvery,
                    BenchResult& out, std::string& error) {
@@ -56,6 +77,7 @@ bool runBenchPoint(const std::string& scenePath, const BenchPoint& point, int st
   r.threads = run->threads();
   r.steps = done;
   r.msMedian = quantile(ms, 0.5);
+  r.msMin = r.msMax = r.msMedian;
   r.msP95 = quantile(ms, 0.95);
   r.cpuMsMedian = quantile(cpu, 0.5);
   r.iterationsMean = done ? iterations / done : 0.0;

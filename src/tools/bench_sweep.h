@@ -35,12 +35,22 @@ struct BenchResult {
   double meanDrop = 0, maxDrop = 0, jitter = 0;
   bool nan = false;
   uint64_t stateHash = 0;
+  /// Runs behind this result (haif bench --repeat), and the fastest and slowest of their ms/step medians.
+  int rounds = 1;
+  double msMin = 0, msMax = 0;
 };
 
 /// Runs `point` on the scene at `scenePath` for `steps` steps, sampling the solve error every
 /// `errorEvery` steps where the engine can (0: never). One error line on failure.
 bool runBenchPoint(const std::string& scenePath, const BenchPoint& point, int steps, int errorEvery,
                    BenchResult& out, std::string& error);
+
+/// One result for a set-up run several times (`runs`, non-empty; haif bench --repeat): ms/step is
+/// the median of the runs' medians (the lower middle one for an even count), p95 and CPU time the
+/// same way; errors, iterations and the state hash come from the run whose ms/step that is (fixed
+/// set-ups give the same in every run). On a machine whose speed drifts, runs of different set-ups
+/// taken in rotation see the same conditions, so their medians compare where single runs do not.
+BenchResult combineRounds(const std::vector<BenchResult>& runs);
 
 /// An error metric the report tabulates and plots against ms/step.
 struct BenchMetric {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -175,6 +176,40 @@ TEST_F(BenchCommand, TinySweepWritesResultsReportAndPlot) {
     EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << e.path();
 }
 
+TEST_F(BenchCommand, RepeatRunsEverySetUpInRoundsAndReportsTheirSpread) {
+  const fs::path out = dir_ / "out";
+  const Result r = haif("bench --scenes '" + kStacks + "' --engines haif --steps 20 --iterations 4 --budgets 3 " +
+                        "--threads 2 --error-every 0 --repeat 3 --out '" + out.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  // Round by round: every set-up once in round 1 before any runs in round 2.
+  const std::string stdoutText = readFile(dir_ / "stdout.txt");
+  const size_t lastOfRound1 = stdoutText.rfind("(round 1/3)"), firstOfRound2 = stdoutText.find("(round 2/3)");
+  ASSERT_NE(lastOfRound1, std::string::npos);
+  ASSERT_NE(firstOfRound2, std::string::npos);
+  EXPECT_LT(lastOfRound1, firstOfRound2);
+  EXPECT_NE(stdoutText.find("(round 3/3)"), std::string::npos);
+
+  std::stringstream lines(readFile(out / "results.csv"));
+  std::string headerLine;
+  ASSERT_TRUE(std::getline(lines, headerLine));
+  const std::vector<std::string> header = split(headerLine);
+  auto num = [&](const std::vector<std::string>& row, const std::string& name) {
+    const size_t i = size_t(std::find(header.begin(), header.end(), name) - header.begin());
+    return i < row.size() ? std::stod(row[i]) : NAN;
+  };
+  int rows = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty()) continue;
+    const std::vector<std::string> row = split(line);
+    ++rows;
+    EXPECT_EQ(num(row, "rounds"), 3);
+    EXPECT_LE(num(row, "ms_per_step_min"), num(row, "ms_per_step_median")) << line;
+    EXPECT_LE(num(row, "ms_per_step_median"), num(row, "ms_per_step_max")) << line;
+  }
+  EXPECT_EQ(rows, 4);  // fixed:4, adaptive:3, the sequential fixed:10 and the seed's adaptive:4
+  EXPECT_NE(readFile(out / "report.md").find("ran 3 times, in rotation"), std::string::npos);
+}
+
 TEST_F(BenchCommand, UnknownEngineIsRefused) {
   const fs::path out = dir_ / "out";
   const std::string tail = " --steps 5 --out '" + out.string() + "'";
@@ -198,6 +233,7 @@ TEST_F(BenchCommand, BadListsAndMissingScenes) {
   expectCleanFailure(haif("bench --scenes '" + kStacks + "' --iterations 2.5" + tail), out, {"--iterations"});
   expectCleanFailure(haif("bench --scenes '" + kStacks + "' --budgets fast" + tail), out, {"--budgets", "fast"});
   expectCleanFailure(haif("bench --scenes '" + kStacks + "' --steps 0 --out '" + out.string() + "'"), out, {"--steps"});
+  expectCleanFailure(haif("bench --scenes '" + kStacks + "' --repeat 0" + tail), out, {"--repeat"});
   const std::string missing = (dir_ / "no_such_scene.json").string();
   expectCleanFailure(haif("bench --scenes '" + missing + "'" + tail), out, {missing});
   EXPECT_FALSE(fs::exists(out));
