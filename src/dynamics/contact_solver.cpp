@@ -207,6 +207,18 @@ bool prepareBlockInverse(const Manifold& mf, const Vec3& centre, const Vec3& t1,
 
 }  // namespace
 
+namespace {
+
+// The three friction rows' parts (tangent 1, tangent 2, twist); the fourth row is zero.
+void setFrictionRows(RowVectors& rows, const Vec3& tangent1, const Vec3& tangent2, const Vec3& twist) {
+  rows.set(0, tangent1);
+  rows.set(1, tangent2);
+  rows.set(2, twist);
+  rows.set(3, Vec3::Zero());
+}
+
+}  // namespace
+
 void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci, const SolverParams& p,
                     ContactConstraint& cc) {
   const uint32_t a = contact.a, b = contact.b;
@@ -301,26 +313,11 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   const Vec3 rAxt1 = rA.cross(t1), rBxt1 = rB.cross(t1), rAxt2 = rA.cross(t2), rBxt2 = rB.cross(t2);
   const Vec3 iAt1 = iA * rAxt1, iBt1 = iB * rBxt1, iAt2 = iA * rAxt2, iBt2 = iB * rBxt2;
   const Vec3 iAtw = iA * n, iBtw = iB * n;
-  cc.frictionLinear.set(0, t1);
-  cc.frictionLinear.set(1, t2);
-  cc.frictionLinear.set(2, Vec3::Zero());
-  cc.frictionLinear.set(3, Vec3::Zero());
-  cc.frictionAngularA.set(0, rAxt1);
-  cc.frictionAngularA.set(1, rAxt2);
-  cc.frictionAngularA.set(2, n);
-  cc.frictionAngularA.set(3, Vec3::Zero());
-  cc.frictionAngularB.set(0, rBxt1);
-  cc.frictionAngularB.set(1, rBxt2);
-  cc.frictionAngularB.set(2, n);
-  cc.frictionAngularB.set(3, Vec3::Zero());
-  cc.frictionInverseA.set(0, iAt1);
-  cc.frictionInverseA.set(1, iAt2);
-  cc.frictionInverseA.set(2, iAtw);
-  cc.frictionInverseA.set(3, Vec3::Zero());
-  cc.frictionInverseB.set(0, iBt1);
-  cc.frictionInverseB.set(1, iBt2);
-  cc.frictionInverseB.set(2, iBtw);
-  cc.frictionInverseB.set(3, Vec3::Zero());
+  setFrictionRows(cc.frictionLinear, t1, t2, Vec3::Zero());
+  setFrictionRows(cc.frictionAngularA, rAxt1, rAxt2, n);
+  setFrictionRows(cc.frictionAngularB, rBxt1, rBxt2, n);
+  setFrictionRows(cc.frictionInverseA, iAt1, iAt2, iAtw);
+  setFrictionRows(cc.frictionInverseB, iBt1, iBt2, iBtw);
   // The two tangent rows share lever arms, so they couple: solve them as a 2x2 block.
   const float k11 = mSum + rAxt1.dot(iAt1) + rBxt1.dot(iBt1);
   const float k22 = mSum + rAxt2.dot(iAt2) + rBxt2.dot(iBt2);
