@@ -384,8 +384,7 @@ inline void clampToFrictionCircle(float& n1, float& n2, float limit) {
 namespace {
 
 // What impulses `a` on four rows apply: Σ a_i lin_i (linear) and Σ a_i (I⁻¹ J_ang)_i for each
-// body. Zero rows add nothing.
-// Each is a vector (x, y, z, 0).
+// body, each as a vector (x, y, z, 0). Zero rows add nothing.
 struct RowImpulses {
   F4 linear, angularA, angularB;
 };
@@ -462,22 +461,26 @@ inline F4 solveNormalBlock(ContactConstraint& c, F4 va, F4 wa, F4 vb, F4 wb,
       return next - start;
     }
   }
-  float K[kMaxManifoldPoints][kMaxManifoldPoints];
-  normalCoupling(c, K);
   float lambda[kMaxManifoldPoints];
   store(lambda, start);
-  const int passes = c.count > 1 ? kManifoldNormalPasses : 1;
-  for (int pass = 0; pass < passes; ++pass) {
-    bool moved = false;
-    for (int i = 0; i < c.count; ++i) {
-      const float old = lambda[i];
-      lambda[i] = std::max(0.0f, old - omega * c.normalMass[i] * (vn[i] + bias[i]));
-      const float d = lambda[i] - old;
-      if (d == 0.0f) continue;
-      moved = true;
-      vn += load(K[i]) * d;  // K is symmetric: row i is column i
+  if (c.count == 1) {
+    // One row (a sphere, a vertex): one projected step, no coupling to follow.
+    lambda[0] = std::max(0.0f, lambda[0] - omega * c.normalMass[0] * (vn[0] + bias[0]));
+  } else {
+    float K[kMaxManifoldPoints][kMaxManifoldPoints];
+    normalCoupling(c, K);
+    for (int pass = 0; pass < kManifoldNormalPasses; ++pass) {
+      bool moved = false;
+      for (int i = 0; i < c.count; ++i) {
+        const float old = lambda[i];
+        lambda[i] = std::max(0.0f, old - omega * c.normalMass[i] * (vn[i] + bias[i]));
+        const float d = lambda[i] - old;
+        if (d == 0.0f) continue;
+        moved = true;
+        vn += load(K[i]) * d;  // K is symmetric: row i is column i
+      }
+      if (!moved) break;  // a pass that changed nothing ends the block solve (separated contacts: at once)
     }
-    if (!moved) break;  // a pass that changed nothing ends the block solve (separated contacts: at once)
   }
   const F4 next = load(lambda);
   store(c.normalImpulse, next);
