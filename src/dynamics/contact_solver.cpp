@@ -109,18 +109,18 @@ void normalCoupling(const ContactConstraint& c, float K[kMaxManifoldPoints][kMax
 
 namespace {
 
-// G = B (Bᵀ K B)⁻¹ Bᵀ for M points and a basis of rank Kb, with the loop bounds known at compile
-// time so they unroll (a manifold's prepare spent about half its time in these loops with run-time
-// bounds). The arithmetic and its order are those of the general loops: results are the same.
-template <int M, int Kb>
-bool blockInverseOf(const float coupling[kMaxManifoldPoints][kMaxManifoldPoints],
-                    const double B[kMaxManifoldPoints][3], float G[kMaxManifoldPoints][kMaxManifoldPoints]) {
-  // A = Bᵀ K B (Kb × Kb, symmetric positive definite when the bodies can respond in all Kb ways).
-  double KB[M][3] = {};
+// G = B (Bᵀ K B)⁻¹ Bᵀ for M collinear points (a basis of rank 2: [1, the coordinate along the
+// line]), with the loop bounds known at compile time so they unroll.
+template <int M>
+bool lineBlockInverse(const float coupling[kMaxManifoldPoints][kMaxManifoldPoints],
+                      const double B[kMaxManifoldPoints][3], float G[kMaxManifoldPoints][kMaxManifoldPoints]) {
+  constexpr int Kb = 2;
+  // A = Bᵀ K B (2 × 2, symmetric positive definite when the bodies can respond in both ways).
+  double KB[M][Kb] = {};
   for (int i = 0; i < M; ++i)
     for (int j = 0; j < M; ++j)
       for (int a = 0; a < Kb; ++a) KB[i][a] += double(coupling[i][j]) * B[j][a];
-  double A[3][3] = {};
+  double A[Kb][Kb] = {};
   for (int a = 0; a < Kb; ++a)
     for (int b = a; b < Kb; ++b) {
       for (int i = 0; i < M; ++i) A[a][b] += B[i][a] * KB[i][b];
@@ -128,17 +128,13 @@ bool blockInverseOf(const float coupling[kMaxManifoldPoints][kMaxManifoldPoints]
     }
   // Inverse by cofactors; a determinant small against the diagonal means a direction the bodies
   // cannot respond in (e.g. no rotation): leave that block to the passes.
-  double inv[3][3] = {};
-  if (Kb == 2) {
-    const double det = A[0][0] * A[1][1] - A[0][1] * A[1][0];
-    if (!(det > 1e-6 * A[0][0] * A[1][1])) return false;
-    inv[0][0] = A[1][1] / det;
-    inv[1][1] = A[0][0] / det;
-    inv[0][1] = inv[1][0] = -A[0][1] / det;
-  } else if (!invertSymmetric3(A, inv, 1e-6)) {
-    return false;
-  }
-  double C[3][M] = {};  // A⁻¹ Bᵀ
+  const double det = A[0][0] * A[1][1] - A[0][1] * A[1][0];
+  if (!(det > 1e-6 * A[0][0] * A[1][1])) return false;
+  double inv[Kb][Kb];
+  inv[0][0] = A[1][1] / det;
+  inv[1][1] = A[0][0] / det;
+  inv[0][1] = inv[1][0] = -A[0][1] / det;
+  double C[Kb][M] = {};  // A⁻¹ Bᵀ
   for (int a = 0; a < Kb; ++a)
     for (int j = 0; j < M; ++j)
       for (int b = 0; b < Kb; ++b) C[a][j] += inv[a][b] * B[j][b];
@@ -152,7 +148,7 @@ bool blockInverseOf(const float coupling[kMaxManifoldPoints][kMaxManifoldPoints]
   return true;
 }
 
-// blockInverseOf for a rank-3 basis (a patch of 3 or 4 points, the common case), on 4-wide double
+// G for a rank-3 basis (a patch of 3 or 4 points, the common case), on 4-wide double
 // vectors: the same products, a column of K B or a row of A⁻¹ Bᵀ per vector. Rows of K and B past
 // the point count are zero, so they drop out.
 bool patchBlockInverse(const float coupling[kMaxManifoldPoints][kMaxManifoldPoints],
@@ -197,11 +193,11 @@ bool prepareBlockInverse(const Manifold& mf, const Vec3& centre, const Vec3& t1,
   normalCoupling(cc, K);
   auto& G = cc.blockInverse;
   if (k == 3) return patchBlockInverse(K, B, G);
-  switch (m * 4 + k) {
-    case 4 * 4 + 2: return blockInverseOf<4, 2>(K, B, G);
-    case 3 * 4 + 2: return blockInverseOf<3, 2>(K, B, G);
-    case 2 * 4 + 2: return blockInverseOf<2, 2>(K, B, G);
-    default: return false;  // rank 1: all points in one place
+  if (k != 2) return false;  // rank 1: all points in one place
+  switch (m) {
+    case 4: return lineBlockInverse<4>(K, B, G);
+    case 3: return lineBlockInverse<3>(K, B, G);
+    default: return lineBlockInverse<2>(K, B, G);
   }
 }
 
