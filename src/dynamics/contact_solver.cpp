@@ -83,15 +83,6 @@ void planarCoords(const Manifold& mf, const Vec3& centre, const Vec3& t1, const 
   }
 }
 
-int manifoldBasis(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
-                  double B[kMaxManifoldPoints][3]) {
-  // In-plane coordinates of the points. G does not depend on which basis of the affine functions
-  // B holds, so B = [1, s, t] serves; collinear points span only [1, the coordinate along them].
-  double coords[kMaxManifoldPoints][2];
-  planarCoords(mf, centre, t1, t2, coords);
-  return pointBasis(coords, mf.count, (1u << mf.count) - 1u, B);
-}
-
 void normalCoupling(const ContactConstraint& c, float K[kMaxManifoldPoints][kMaxManifoldPoints]) {
   const float mSum = c.invMassA + c.invMassB;
   const F4 nx = load(c.normal.x), ny = load(c.normal.y), nz = load(c.normal.z);
@@ -151,15 +142,14 @@ bool lineBlockInverse(const float coupling[kMaxManifoldPoints][kMaxManifoldPoint
 // G for a rank-3 basis (a patch of 3 or 4 points, the common case), on 4-wide double
 // vectors: the same products, a column of K B or a row of A⁻¹ Bᵀ per vector. Rows of K and B past
 // the point count are zero, so they drop out.
-bool patchBlockInverse(const float coupling[kMaxManifoldPoints][kMaxManifoldPoints],
-                       const double B[kMaxManifoldPoints][3], float G[kMaxManifoldPoints][kMaxManifoldPoints]) {
-  using D4 = double __attribute__((vector_size(4 * sizeof(double))));
-  D4 Bc[3], KB[3];  // columns of B and of K B
-  for (int a = 0; a < 3; ++a) Bc[a] = D4{B[0][a], B[1][a], B[2][a], B[3][a]};
-  for (int a = 0; a < 3; ++a) KB[a] = D4{};
+using D4 = double __attribute__((vector_size(4 * sizeof(double))));
+
+bool patchBlockInverse(const float coupling[kMaxManifoldPoints][kMaxManifoldPoints], const D4 Bc[3],
+                       float G[kMaxManifoldPoints][kMaxManifoldPoints]) {
+  D4 KB[3] = {};  // columns of K B
   for (int j = 0; j < kMaxManifoldPoints; ++j) {
     const D4 Kj{coupling[j][0], coupling[j][1], coupling[j][2], coupling[j][3]};  // column j (K is symmetric)
-    for (int a = 0; a < 3; ++a) KB[a] += Kj * B[j][a];
+    for (int a = 0; a < 3; ++a) KB[a] += Kj * Bc[a][j];
   }
   double A[3][3];
   for (int a = 0; a < 3; ++a)
@@ -172,28 +162,42 @@ bool patchBlockInverse(const float coupling[kMaxManifoldPoints][kMaxManifoldPoin
   D4 C[3];  // rows of A⁻¹ Bᵀ
   for (int a = 0; a < 3; ++a) C[a] = inv[a][0] * Bc[0] + inv[a][1] * Bc[1] + inv[a][2] * Bc[2];
   for (int i = 0; i < kMaxManifoldPoints; ++i) {
-    const D4 g = B[i][0] * C[0] + B[i][1] * C[1] + B[i][2] * C[2];
+    const D4 g = Bc[0][i] * C[0] + Bc[1][i] * C[1] + Bc[2][i] * C[2];
     for (int j = i; j < kMaxManifoldPoints; ++j) G[i][j] = G[j][i] = float(g[j]);
   }
   return true;
 }
 
-// Builds cc.blockInverse (see ContactConstraint) from the manifold's point positions and the
-// coupling matrix; false when the block must be solved by passes alone.
-bool prepareBlockInverse(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
-                         ContactConstraint& cc) {
+// Builds cc.blockInverse (see ContactConstraint) from the points' in-plane coordinates (s, t) about
+// their centre (zero past the count) and the coupling matrix; false when the block must be solved
+// by passes alone. The basis and its rank test are pointBasis's, for all points.
+bool prepareBlockInverse(F4 s, F4 t, ContactConstraint& cc) {
   const int m = cc.count;
   if (m < 2) return false;
-  const Vec3 n0 = cc.normal.row(0);
-  for (int i = 1; i < m; ++i)
-    if ((cc.normal.row(i) - n0).squaredNorm() > 1e-8f) return false;
-  double B[kMaxManifoldPoints][3];
-  const int k = manifoldBasis(mf, centre, t1, t2, B);
+  const F4 nx = load(cc.normal.x), ny = load(cc.normal.y), nz = load(cc.normal.z);
+  const F4 dx = nx - nx[0], dy = ny - ny[0], dz = nz - nz[0];
+  const simd4::I4 points = simd4::I4{0, 1, 2, 3} < m;
+  if (simd4::laneMax(points ? dx * dx + dy * dy + dz * dz : F4{}) > 1e-8f) return false;
+  const D4 used{1.0, 1.0, m > 2 ? 1.0 : 0.0, m > 3 ? 1.0 : 0.0};
+  D4 Bc[3] = {used, D4{s[0], s[1], s[2], s[3]}, D4{t[0], t[1], t[2], t[3]}};
+  const D4 ss = Bc[1] * Bc[1], tt = Bc[2] * Bc[2], st = Bc[1] * Bc[2];
+  const double css = (ss[0] + ss[1]) + (ss[2] + ss[3]), ctt = (tt[0] + tt[1]) + (tt[2] + tt[3]);
+  const double cst = (st[0] + st[1]) + (st[2] + st[3]);
+  const double spread = css + ctt;
+  if (!(spread > 1e-12)) return false;  // rank 1: all points in one place
   float K[kMaxManifoldPoints][kMaxManifoldPoints];
   normalCoupling(cc, K);
   auto& G = cc.blockInverse;
-  if (k == 3) return patchBlockInverse(K, B, G);
-  if (k != 2) return false;  // rank 1: all points in one place
+  const bool collinear = css * ctt - cst * cst <= 1e-4 * spread * spread;
+  if (m >= 3 && !collinear) return patchBlockInverse(K, Bc, G);
+  // Rank 2: [1, the coordinate along the line].
+  const D4 along = ctt > css ? Bc[2] : Bc[1];
+  double B[kMaxManifoldPoints][3];
+  for (int i = 0; i < kMaxManifoldPoints; ++i) {
+    B[i][0] = used[i];
+    B[i][1] = along[i];
+    B[i][2] = 0.0;
+  }
   switch (m) {
     case 4: return lineBlockInverse<4>(K, B, G);
     case 3: return lineBlockInverse<3>(K, B, G);
@@ -205,12 +209,12 @@ bool prepareBlockInverse(const Manifold& mf, const Vec3& centre, const Vec3& t1,
 
 namespace {
 
-// The three friction rows' parts (tangent 1, tangent 2, twist); the fourth row is zero.
-void setFrictionRows(RowVectors& rows, const Vec3& tangent1, const Vec3& tangent2, const Vec3& twist) {
-  rows.set(0, tangent1);
-  rows.set(1, tangent2);
-  rows.set(2, twist);
-  rows.set(3, Vec3::Zero());
+// Stores the three friction rows' parts from their components (lanes: tangent 1, tangent 2,
+// twist, 0).
+inline void storeRows(RowVectors& rows, F4 x, F4 y, F4 z) {
+  store(rows.x, x);
+  store(rows.y, y);
+  store(rows.z, z);
 }
 
 }  // namespace
@@ -238,7 +242,6 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   // The normal rows, all four points at once (see RowVectors). Points past the count have a zero
   // normal, which makes every field of their rows zero except the mass, masked below.
   F4 px{}, py{}, pz{}, nx{}, ny{}, nz{}, depth{}, warm{};
-  Vec3 centre = Vec3::Zero(), normalSum = Vec3::Zero();
   for (int i = 0; i < cc.count; ++i) {
     const ContactPoint& mp = contact.manifold.points[i];
     px[i] = mp.position.x();
@@ -249,8 +252,6 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
     nz[i] = mp.normal.z();
     depth[i] = mp.depth;
     warm[i] = contact.normalImpulse[i];
-    centre += mp.position;
-    normalSum += mp.normal;
   }
   const F4 ax = px - pA.x(), ay = py - pA.y(), az = pz - pA.z();
   const F4 bx = px - pB.x(), by = py - pB.y(), bz = pz - pB.z();
@@ -299,25 +300,48 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   for (int r = 0; r <= ContactConstraint::kRows; ++r) cc.delta[r] = cc.direction[r] = 0.0f;
   cc.blockExact = false;
 
-  // Friction at the centre of the points, about the mean normal.
+  // Friction at the centre of the points, about the mean normal. Its three rows are built at once,
+  // one lane each (tangent 1, tangent 2, twist), as the sweep reads them.
   if (cc.count == 0) return;
-  centre /= float(cc.count);
+  const float invCount = 1.0f / float(cc.count);
+  const Vec3 centre(simd4::laneSum(px) * invCount, simd4::laneSum(py) * invCount, simd4::laneSum(pz) * invCount);
+  const Vec3 normalSum(simd4::laneSum(nx), simd4::laneSum(ny), simd4::laneSum(nz));
   const Vec3 n = normalSum.squaredNorm() > 1e-12f ? Vec3(normalSum.normalized()) : contact.manifold.points[0].normal;
   Vec3 t1, t2;
   orthonormalBasis(n, t1, t2);
   const Vec3 rA = centre - pA, rB = centre - pB;
-  const Vec3 rAxt1 = rA.cross(t1), rBxt1 = rB.cross(t1), rAxt2 = rA.cross(t2), rBxt2 = rB.cross(t2);
-  const Vec3 iAt1 = iA * rAxt1, iBt1 = iB * rBxt1, iAt2 = iA * rAxt2, iBt2 = iB * rBxt2;
-  const Vec3 iAtw = iA * n, iBtw = iB * n;
-  setFrictionRows(cc.frictionLinear, t1, t2, Vec3::Zero());
-  setFrictionRows(cc.frictionAngularA, rAxt1, rAxt2, n);
-  setFrictionRows(cc.frictionAngularB, rBxt1, rBxt2, n);
-  setFrictionRows(cc.frictionInverseA, iAt1, iAt2, iAtw);
-  setFrictionRows(cc.frictionInverseB, iBt1, iBt2, iBtw);
+  const F4 tx{t1.x(), t2.x(), 0.0f, 0.0f}, ty{t1.y(), t2.y(), 0.0f, 0.0f}, tz{t1.z(), t2.z(), 0.0f, 0.0f};
+  // Angular parts: r × t for the tangent rows, the normal itself for the twist.
+  const simd4::I4 twistLane = simd4::I4{0, 1, 2, 3} == 2;
+  const F4 aAx = twistLane ? F4{} + n.x() : rA.y() * tz - rA.z() * ty;
+  const F4 aAy = twistLane ? F4{} + n.y() : rA.z() * tx - rA.x() * tz;
+  const F4 aAz = twistLane ? F4{} + n.z() : rA.x() * ty - rA.y() * tx;
+  const F4 aBx = twistLane ? F4{} + n.x() : rB.y() * tz - rB.z() * ty;
+  const F4 aBy = twistLane ? F4{} + n.y() : rB.z() * tx - rB.x() * tz;
+  const F4 aBz = twistLane ? F4{} + n.z() : rB.x() * ty - rB.y() * tx;
+  const F4 iAx = iA(0, 0) * aAx + iA(0, 1) * aAy + iA(0, 2) * aAz;
+  const F4 iAy = iA(1, 0) * aAx + iA(1, 1) * aAy + iA(1, 2) * aAz;
+  const F4 iAz = iA(2, 0) * aAx + iA(2, 1) * aAy + iA(2, 2) * aAz;
+  const F4 iBx = iB(0, 0) * aBx + iB(0, 1) * aBy + iB(0, 2) * aBz;
+  const F4 iBy = iB(1, 0) * aBx + iB(1, 1) * aBy + iB(1, 2) * aBz;
+  const F4 iBz = iB(2, 0) * aBx + iB(2, 1) * aBy + iB(2, 2) * aBz;
+  storeRows(cc.frictionLinear, tx, ty, tz);
+  storeRows(cc.frictionAngularA, aAx, aAy, aAz);
+  storeRows(cc.frictionAngularB, aBx, aBy, aBz);
+  storeRows(cc.frictionInverseA, iAx, iAy, iAz);
+  storeRows(cc.frictionInverseB, iBx, iBy, iBz);
+  // The rows' coupling K (the tangents are orthonormal and the twist has no linear part, so the
+  // linear term adds mSum on the tangents' diagonal only): the diagonal lane by lane, and with the
+  // inverse parts turned by one lane, K01 (lane 0), K12 (lane 1) and K20 (lane 2).
+  const F4 diag = mSum * (tx * tx + ty * ty + tz * tz) + (aAx * iAx + aAy * iAy + aAz * iAz) +
+                  (aBx * iBx + aBy * iBy + aBz * iBz);
+  const simd4::I4 turn{1, 2, 0, 3};
+  const F4 offDiag = (aAx * __builtin_shuffle(iAx, turn) + aAy * __builtin_shuffle(iAy, turn) +
+                      aAz * __builtin_shuffle(iAz, turn)) +
+                     (aBx * __builtin_shuffle(iBx, turn) + aBy * __builtin_shuffle(iBy, turn) +
+                      aBz * __builtin_shuffle(iBz, turn));
   // The two tangent rows share lever arms, so they couple: solve them as a 2x2 block.
-  const float k11 = mSum + rAxt1.dot(iAt1) + rBxt1.dot(iBt1);
-  const float k22 = mSum + rAxt2.dot(iAt2) + rBxt2.dot(iBt2);
-  const float k12 = rAxt1.dot(iAt2) + rBxt1.dot(iBt2);
+  const float k11 = diag[0], k22 = diag[1], k12 = offDiag[0];
   const float det = k11 * k22 - k12 * k12;
   if (det > 1e-12f * std::max(1.0f, k11 * k22)) {
     const float inv = 1.0f / det;
@@ -327,17 +351,22 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   } else {
     cc.tangentMass[0][0] = cc.tangentMass[1][1] = cc.tangentMass[0][1] = cc.tangentMass[1][0] = 0.0f;
   }
-  const float kt = n.dot(iAtw) + n.dot(iBtw);
+  const float kt = diag[2];
   cc.twistMass = kt > 0.0f ? 1.0f / kt : 0.0f;
   // The sweep solves the twist first and reads all three rows' velocities before it; the tangent
   // rows then see the twist's impulse through these couplings, as if applied in between.
-  cc.twistCoupling[0] = rAxt1.dot(iAtw) + rBxt1.dot(iBtw);
-  cc.twistCoupling[1] = rAxt2.dot(iAtw) + rBxt2.dot(iBtw);
+  cc.twistCoupling[0] = offDiag[2];  // K20 = K02 (I⁻¹ is symmetric)
+  cc.twistCoupling[1] = offDiag[1];
+  // The points' coordinates in the contact plane about the centre (zero past the count).
+  const F4 cx = px - centre.x(), cy = py - centre.y(), cz = pz - centre.z();
+  const F4 s = used ? cx * t1.x() + cy * t1.y() + cz * t1.z() : F4{};
+  const F4 t = used ? cx * t2.x() + cy * t2.y() + cz * t2.z() : F4{};
   // Twist friction of a contact patch: μ·N times the mean distance of the points from the centre.
+  const F4 dist2 = cx * cx + cy * cy + cz * cz;
   float radius = 0.0f;
-  for (int i = 0; i < cc.count; ++i) radius += (contact.manifold.points[i].position - centre).norm();
-  cc.twistRadius = radius / float(cc.count);
-  cc.blockExact = prepareBlockInverse(contact.manifold, centre, t1, t2, cc);
+  for (int i = 0; i < cc.count; ++i) radius += std::sqrt(dist2[i]);
+  cc.twistRadius = radius * invCount;
+  cc.blockExact = prepareBlockInverse(s, t, cc);
 
   if (p.warmStart) {
     cc.frictionImpulse[0] = contact.frictionImpulse.dot(t1);

@@ -117,16 +117,12 @@ void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n);
 /// the bodies cannot respond in (nearly singular).
 bool invertSymmetric3(const double a[3][3], double out[3][3], double minDetRatio);
 
-/// In-plane basis of a manifold's points for its normal block: B[i] = [1, s_i, t_i], with (s, t) the
-/// point's coordinates along t1 and t2 from `centre`. Returns the rank k it spans (3 for a patch, 2
-/// for collinear points, 1 for a single place); columns from k on are zero.
-int manifoldBasis(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
-                  double B[kMaxManifoldPoints][3]);
-/// The points' in-plane coordinates (s, t) that manifoldBasis uses.
+/// The points' in-plane coordinates (s, t) along t1 and t2 from `centre` (zero past the count).
 void planarCoords(const Manifold& mf, const Vec3& centre, const Vec3& t1, const Vec3& t2,
                   double coords[kMaxManifoldPoints][2]);
-/// The basis of the points in `mask` (bit i: point i) of `count` points at `coords`; rows of the
-/// other points are zero. Returns its rank.
+/// In-plane basis of the points in `mask` (bit i: point i) of `count` points at `coords`, for a
+/// normal block: B[i] = [1, s_i, t_i] (rows of the other points are zero). Returns the rank k it
+/// spans (3 for a patch, 2 for collinear points, 1 for a single place); columns from k on are zero.
 int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned mask, double B[kMaxManifoldPoints][3]);
 
 /// J v of normal row i: the bodies' relative velocity along its normal at its point (< 0: approaching).

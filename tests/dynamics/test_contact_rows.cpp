@@ -1,0 +1,114 @@
+// The rows prepareContact builds, checked against the contact's Jacobians formed here from scratch
+// (in double): the friction rows at the manifold's centre and their coupling, which the sweep uses
+// as solved (the 2x2 tangent block, the twist mass and the twist-tangent couplings).
+#include "dynamics/contact_solver.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace haif {
+namespace {
+
+using Vec3d = Eigen::Vector3d;
+using Mat3d = Eigen::Matrix3d;
+
+// One row of a contact: J v = lin·(vB − vA) + angB·wB − angA·wA.
+struct Row {
+  Vec3d lin, angA, angB;
+};
+
+// Two dynamic bodies with unequal, turned inertias touching on a tilted plane at four irregular
+// points of different depths.
+struct TiltedPatch {
+  BodyStore bodies;
+  Contact contact;
+  TiltedPatch() {
+    Transform ta, tb;
+    ta.p = Vec3(0.3f, -0.6f, 0.2f);
+    ta.q = Quat(Eigen::AngleAxisf(0.7f, Vec3(1.0f, 2.0f, 0.5f).normalized()));
+    tb.p = Vec3(-0.2f, 0.9f, 0.4f);
+    tb.q = Quat(Eigen::AngleAxisf(-1.1f, Vec3(0.3f, 0.2f, 1.0f).normalized()));
+    bodies.add(BodyKind::Dynamic, ta, 2.0f, Vec3(0.9f, 2.5f, 4.0f).asDiagonal());
+    bodies.add(BodyKind::Dynamic, tb, 0.5f, Vec3(6.0f, 1.5f, 3.0f).asDiagonal());
+    contact.a = 0;
+    contact.b = 1;
+    contact.friction = 0.5f;
+    const Vec3 n = Vec3(0.2f, 1.0f, -0.3f).normalized();
+    Vec3 u, w;
+    orthonormalBasis(n, u, w);
+    const float st[4][2] = {{-0.4f, -0.3f}, {0.6f, -0.2f}, {0.3f, 0.5f}, {-0.5f, 0.35f}};
+    contact.manifold.count = 4;
+    for (int i = 0; i < 4; ++i) {
+      ContactPoint& p = contact.manifold.points[i];
+      p.position = Vec3(0.05f, 0.1f, 0.3f) + st[i][0] * u + st[i][1] * w + 0.01f * float(i) * n;
+      p.normal = n;
+      p.depth = 0.002f * float(i);
+      p.id = uint32_t(i);
+    }
+  }
+  // J_r M⁻¹ J_sᵀ from the bodies' masses and world inertias.
+  double coupling(const Row& r, const Row& s) const {
+    const double mSum = double(bodies.invMass[0]) + double(bodies.invMass[1]);
+    const Mat3d iA = bodies.invInertiaWorld[0].cast<double>(), iB = bodies.invInertiaWorld[1].cast<double>();
+    return mSum * r.lin.dot(s.lin) + r.angA.dot(iA * s.angA) + r.angB.dot(iB * s.angB);
+  }
+};
+
+Vec3d rowOf(const RowVectors& rows, int i) { return rows.row(i).cast<double>(); }
+
+TEST(ContactRows, FrictionRowsAndTheirCouplingMatchTheJacobians) {
+  TiltedPatch s;
+  SolverParams sp;
+  sp.warmStart = false;
+  ContactConstraint c;
+  prepareContact(s.bodies, s.contact, 0, sp, c);
+  ASSERT_EQ(c.count, 4);
+
+  // The frame: the mean normal and two tangents, orthonormal.
+  Vec3d centre = Vec3d::Zero();
+  for (int i = 0; i < 4; ++i) centre += s.contact.manifold.points[i].position.cast<double>() / 4.0;
+  const Vec3d n = s.contact.manifold.points[0].normal.cast<double>();
+  const Vec3d t1 = c.tangent1().cast<double>(), t2 = c.tangent2().cast<double>();
+  EXPECT_NEAR(t1.norm(), 1.0, 1e-6);
+  EXPECT_NEAR(t2.norm(), 1.0, 1e-6);
+  EXPECT_NEAR(t1.dot(t2), 0.0, 1e-6);
+  EXPECT_NEAR(t1.dot(n), 0.0, 1e-6);
+  EXPECT_NEAR(t2.dot(n), 0.0, 1e-6);
+  EXPECT_NEAR((c.twistAxis().cast<double>() - n).norm(), 0.0, 1e-6);
+
+  // The three rows at the centre, formed here.
+  const Vec3d rA = centre - s.bodies.xf[0].p.cast<double>(), rB = centre - s.bodies.xf[1].p.cast<double>();
+  const Row rows[3] = {{t1, rA.cross(t1), rB.cross(t1)}, {t2, rA.cross(t2), rB.cross(t2)}, {Vec3d::Zero(), n, n}};
+  const Mat3d iA = s.bodies.invInertiaWorld[0].cast<double>(), iB = s.bodies.invInertiaWorld[1].cast<double>();
+  for (int r = 0; r < 3; ++r) {
+    EXPECT_LT((rowOf(c.frictionLinear, r) - rows[r].lin).norm(), 1e-5) << "row " << r;
+    EXPECT_LT((rowOf(c.frictionAngularA, r) - rows[r].angA).norm(), 1e-5) << "row " << r;
+    EXPECT_LT((rowOf(c.frictionAngularB, r) - rows[r].angB).norm(), 1e-5) << "row " << r;
+    EXPECT_LT((rowOf(c.frictionInverseA, r) - iA * rows[r].angA).norm(), 1e-5) << "row " << r;
+    EXPECT_LT((rowOf(c.frictionInverseB, r) - iB * rows[r].angB).norm(), 1e-5) << "row " << r;
+  }
+  EXPECT_EQ(rowOf(c.frictionLinear, 3).norm(), 0.0);  // the unused fourth row
+  EXPECT_EQ(rowOf(c.frictionInverseA, 3).norm(), 0.0);
+
+  // The tangent block's inverse, the twist mass and the twist's coupling with each tangent.
+  Eigen::Matrix2d Kt;
+  Kt << s.coupling(rows[0], rows[0]), s.coupling(rows[0], rows[1]), s.coupling(rows[1], rows[0]),
+      s.coupling(rows[1], rows[1]);
+  const Eigen::Matrix2d Mt = Kt.inverse();
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) EXPECT_NEAR(c.tangentMass[i][j], Mt(i, j), 1e-4 * std::abs(Mt(i, i))) << i << j;
+  EXPECT_NEAR(c.twistMass, 1.0 / s.coupling(rows[2], rows[2]), 1e-4 * c.twistMass);
+  for (int i = 0; i < 2; ++i) {
+    const double k = s.coupling(rows[i], rows[2]);
+    EXPECT_NEAR(c.twistCoupling[i], k, 1e-5 + 1e-4 * std::abs(k)) << "tangent " << i;
+  }
+
+  // The twist lever: the points' mean distance from the centre.
+  double radius = 0.0;
+  for (int i = 0; i < 4; ++i) radius += (s.contact.manifold.points[i].position.cast<double>() - centre).norm() / 4.0;
+  EXPECT_NEAR(c.twistRadius, radius, 1e-5);
+}
+
+}  // namespace
+}  // namespace haif
