@@ -28,8 +28,18 @@ inline F4 clampNonNegative(F4 v) {
 
 inline F4 abs(F4 v) { return v < F4{} ? -v : v; }
 
+/// Lane i of v in every lane. Lanes are moved with shuffles, not read one by one: GCC reads a lane
+/// by index through a store to the stack.
+template <int i> inline F4 splat(F4 v) { return __builtin_shuffle(v, I4{i, i, i, i}); }
+
+/// Lane i of v as a scalar, by the same shuffle.
+template <int i> inline float lane(F4 v) { return splat<i>(v)[0]; }
+
 /// True when every lane of the mask is set.
-inline bool all(I4 mask) { return (mask[0] & mask[1] & mask[2] & mask[3]) != 0; }
+inline bool all(I4 mask) {
+  const I4 m = mask & __builtin_shuffle(mask, I4{2, 3, 0, 1});
+  return (m & __builtin_shuffle(m, I4{1, 0, 3, 2}))[0] != 0;
+}
 
 /// The lane sums of four vectors: {Σa, Σb, Σc, Σd}, each summed as (x0 + x2) + (x1 + x3).
 inline F4 laneSums(F4 a, F4 b, F4 c, F4 d) {
@@ -39,11 +49,16 @@ inline F4 laneSums(F4 a, F4 b, F4 c, F4 d) {
 }
 
 /// Σ of the lanes, in the same order as laneSums.
-inline float laneSum(F4 a) { return (a[0] + a[2]) + (a[1] + a[3]); }
+inline float laneSum(F4 a) {
+  const F4 h = a + __builtin_shuffle(a, I4{2, 3, 0, 1});  // x0 + x2, x1 + x3
+  return (h + __builtin_shuffle(h, I4{1, 0, 3, 2}))[0];
+}
 
 inline float laneMax(F4 a) {
-  const float m01 = a[0] > a[1] ? a[0] : a[1], m23 = a[2] > a[3] ? a[2] : a[3];
-  return m01 > m23 ? m01 : m23;
+  const F4 b = __builtin_shuffle(a, I4{1, 0, 3, 2});
+  const F4 m = a > b ? a : b;  // max of lanes 0, 1 and of lanes 2, 3
+  const F4 n = __builtin_shuffle(m, I4{2, 3, 0, 1});
+  return (m > n ? m : n)[0];
 }
 
 }  // namespace haif::simd4

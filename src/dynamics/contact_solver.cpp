@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 
 namespace haif {
 
@@ -395,14 +397,23 @@ inline void apply(BodyStore& bodies, const ContactConstraint& c, F4 P, F4 angA, 
   }
 }
 
-// Scales the tangent impulse (n1, n2) back onto the circle of radius `limit` when it lies outside.
-inline void clampToFrictionCircle(float& n1, float& n2, float limit) {
-  const float len2 = n1 * n1 + n2 * n2;
-  if (!(len2 > limit * limit)) return;
-  const float scale = len2 > 0.0f ? limit / std::sqrt(len2) : 0.0f;
-  n1 *= scale;
-  n2 *= scale;
+// Friction impulses are vectors (tangent 1, tangent 2, twist, 0); their lanes stay in vectors, as
+// GCC assembles a vector from scalars through memory.
+
+// Scales the tangent impulses (lanes 0 and 1) back onto the circle of radius `limit` when they lie
+// outside it (the other lanes scale too; callers take only lanes 0 and 1).
+inline F4 ontoFrictionCircle(F4 f, float limit) {
+  const F4 sq = f * f;
+  const float len2 = simd4::lane<0>(sq) + simd4::lane<1>(sq);
+  if (!(len2 > limit * limit)) return f;
+  return f * (len2 > 0.0f ? limit / std::sqrt(len2) : 0.0f);
 }
+
+// f clamped to [−maxTwist, maxTwist] lane by lane, as std::clamp.
+inline F4 clampTwist(F4 f, F4 maxTwist) { return f > maxTwist ? maxTwist : (f < -maxTwist ? -maxTwist : f); }
+
+// Lanes 0 and 1 of the tangent impulses, lanes 2 and 3 of the twist impulses.
+inline F4 joinFriction(F4 tangent, F4 twist) { return __builtin_shuffle(tangent, twist, simd4::I4{0, 1, 6, 7}); }
 
 }  // namespace
 
@@ -431,9 +442,10 @@ inline RowImpulses frictionImpulses(const ContactConstraint& c, F4 a) {
 inline F4 rowVelocities(const RowVectors& lin, const RowVectors& angA, const RowVectors& angB, F4 va, F4 wa, F4 vb,
                         F4 wb) {
   const F4 dv = vb - va;
-  return load(lin.x) * dv[0] + load(lin.y) * dv[1] + load(lin.z) * dv[2] +
-         (load(angB.x) * wb[0] + load(angB.y) * wb[1] + load(angB.z) * wb[2]) -
-         (load(angA.x) * wa[0] + load(angA.y) * wa[1] + load(angA.z) * wa[2]);
+  using simd4::splat;
+  return load(lin.x) * splat<0>(dv) + load(lin.y) * splat<1>(dv) + load(lin.z) * splat<2>(dv) +
+         (load(angB.x) * splat<0>(wb) + load(angB.y) * splat<1>(wb) + load(angB.z) * splat<2>(wb)) -
+         (load(angA.x) * splat<0>(wa) + load(angA.y) * splat<1>(wa) + load(angA.z) * splat<2>(wa));
 }
 
 // Adds the velocity changes of row impulses r to the bodies' velocities.
@@ -478,8 +490,9 @@ inline F4 solveNormalBlock(ContactConstraint& c, F4 va, F4 wa, F4 vb, F4 wb,
     // Exact block solve (2+ points); kept only when it leaves every point pushing (λ ≥ 0). G is
     // symmetric, so its rows serve as the columns of the product.
     const F4 s = vn + bias;
-    const F4 g = load(c.blockInverse[0]) * s[0] + load(c.blockInverse[1]) * s[1] + load(c.blockInverse[2]) * s[2] +
-                 load(c.blockInverse[3]) * s[3];
+    using simd4::splat;
+    const F4 g = load(c.blockInverse[0]) * splat<0>(s) + load(c.blockInverse[1]) * splat<1>(s) +
+                 load(c.blockInverse[2]) * splat<2>(s) + load(c.blockInverse[3]) * splat<3>(s);
     const F4 next = start - omega * g;
     if (simd4::all(next >= 0.0f)) {
       store(c.normalImpulse, next);
@@ -514,25 +527,39 @@ inline F4 solveNormalBlock(ContactConstraint& c, F4 va, F4 wa, F4 vb, F4 wb,
 
 // The parts of a sweep, inlined into solveIteration's loop (the exported functions below wrap them
 // for the chain solver): called out of line, large_pyramid's sweeps took 7% longer.
+// The twist row's constants as one vector: its coupling with tangent 1 and tangent 2, its mass and
+// its lever (see ContactConstraint; they lie side by side).
+static_assert(offsetof(ContactConstraint, twistMass) == offsetof(ContactConstraint, twistCoupling) + 8 &&
+                  offsetof(ContactConstraint, twistRadius) == offsetof(ContactConstraint, twistCoupling) + 12,
+              "the twist constants are read as one vector");
+inline F4 twistConstants(const ContactConstraint& c) {
+  F4 v;
+  std::memcpy(&v, reinterpret_cast<const char*>(&c) + offsetof(ContactConstraint, twistCoupling), sizeof v);
+  return v;
+}
+
 [[gnu::always_inline]] inline void frictionRows(ContactConstraint& c, F4& va, F4& wa, F4& vb, F4& wb,
                                                  float omega) {
+  using simd4::splat;
   // Bounded by the normal impulses of the previous sweep.
-  const float limit = c.friction * simd4::laneSum(load(c.normalImpulse));
+  const F4 limit = splat<0>(F4{} + c.friction * simd4::laneSum(load(c.normalImpulse)));
   const F4 vf = rowVelocities(c.frictionLinear, c.frictionAngularA, c.frictionAngularB, va, wa, vb, wb);
   const F4 old = load(c.frictionImpulse);
-  // Twist about the normal first.
-  const float maxTwist = limit * c.twistRadius;
-  const float twist = std::clamp(old[2] - omega * c.twistMass * vf[2], -maxTwist, maxTwist);
-  const float twistApplied = twist - old[2];
-  // Both tangent rows together, at their velocities after the twist's impulse, clamped to the
-  // friction circle |λt| <= μ λn: clamping each axis alone (a box) lets friction reach √2 μ λn and
-  // pushes a sliding body sideways.
-  const float vt1 = vf[0] + c.twistCoupling[0] * twistApplied;
-  const float vt2 = vf[1] + c.twistCoupling[1] * twistApplied;
-  float n1 = old[0] - omega * (c.tangentMass[0][0] * vt1 + c.tangentMass[0][1] * vt2);
-  float n2 = old[1] - omega * (c.tangentMass[1][0] * vt1 + c.tangentMass[1][1] * vt2);
-  clampToFrictionCircle(n1, n2, limit);
-  const F4 next{n1, n2, twist, 0.0f};
+  const F4 tc = twistConstants(c);  // coupling 1, coupling 2, mass, radius
+  // Twist about the normal first (lane 2).
+  const F4 maxTwist = limit * splat<3>(tc);
+  const F4 trial = old - omega * splat<2>(tc) * vf;
+  const F4 twist = clampTwist(trial, maxTwist);
+  const F4 twistApplied = splat<2>(twist - old);
+  // Both tangent rows together (lanes 0 and 1), at their velocities after the twist's impulse,
+  // clamped to the friction circle |λt| <= μ λn: clamping each axis alone (a box) lets friction
+  // reach √2 μ λn and pushes a sliding body sideways.
+  const F4 vt = vf + tc * twistApplied;
+  const F4 m = load(&c.tangentMass[0][0]);  // m00, m01, m10, m11
+  const F4 tangent = old - omega * (__builtin_shuffle(m, simd4::I4{0, 2, 0, 2}) * splat<0>(vt) +
+                                    __builtin_shuffle(m, simd4::I4{1, 3, 1, 3}) * splat<1>(vt));
+  // Lane 3 is the twist's lane 3, which is 0 (row 3 is zero).
+  const F4 next = joinFriction(ontoFrictionCircle(tangent, simd4::lane<0>(limit)), twist);
   const F4 applied = next - old;
   store(c.frictionImpulse, next);
   store(c.delta + kMaxManifoldPoints, applied);
@@ -644,10 +671,7 @@ void accelerate(BodyStore& bodies, ContactConstraint* cs, size_t n, float beta) 
     const float limit = c.friction * simd4::laneSum(next);
     const F4 oldFriction = load(c.frictionImpulse);
     const F4 step = oldFriction + beta * df;
-    float n1 = step[0], n2 = step[1];
-    clampToFrictionCircle(n1, n2, limit);
-    const float maxTwist = limit * c.twistRadius;
-    const F4 nextFriction{n1, n2, std::clamp(step[2], -maxTwist, maxTwist), 0.0f};
+    const F4 nextFriction = joinFriction(ontoFrictionCircle(step, limit), clampTwist(step, F4{} + limit * c.twistRadius));
     store(c.frictionImpulse, nextFriction);
     const RowImpulses r = normalImpulses(c, next - old);
     const RowImpulses f = frictionImpulses(c, nextFriction - oldFriction);

@@ -76,10 +76,11 @@ struct alignas(16) ContactConstraint {
   RowVectors frictionLinear;                        // t1, t2, 0: the rows' linear part
   RowVectors frictionAngularA, frictionAngularB;    // rA×t1, rA×t2, n and rB×t1, rB×t2, n
   RowVectors frictionInverseA, frictionInverseB;    // I^-1 times them
-  float tangentMass[2][2];          // inverse of the 2x2 block of the tangent rows
+  // The sweep reads the next four floats as one vector, and the four after them as another.
+  alignas(16) float tangentMass[2][2];  // inverse of the 2x2 block of the tangent rows
+  float twistCoupling[2];           // K of each tangent row with the twist row
   float twistMass;                  // 1 / (n (I_A^-1 + I_B^-1) n)
   float twistRadius;                // lever (m) turning the friction limit into a twist limit
-  float twistCoupling[2];           // K of each tangent row with the twist row
   alignas(16) float frictionImpulse[4];  // tangent 1, tangent 2, twist, 0
 
   Vec3 tangent1() const { return frictionLinear.row(0); }
