@@ -462,6 +462,21 @@ Vec3 World::upDirection() const {
   return settings_.gravity.squaredNorm() > 0.0f ? Vec3(-settings_.gravity.normalized()) : Vec3::UnitY();
 }
 
+float World::supportLayers(uint32_t k) const {
+  const Island& isl = islands_.islands[k];
+  if (isl.bodyCount == 0) return 0.0f;
+  const Vec3 up = upDirection(), absUp = up.cwiseAbs();
+  float top = -1e30f, bottom = 1e30f, heights = 0.0f;
+  for (uint32_t j = 0; j < isl.bodyCount; ++j) {
+    const Aabb& b = bounds_[islands_.bodies[isl.firstBody + j]];
+    const float centre = 0.5f * up.dot(b.lo + b.hi), half = 0.5f * absUp.dot(b.hi - b.lo);
+    top = std::max(top, centre + half);
+    bottom = std::min(bottom, centre - half);
+    heights += 2.0f * half;
+  }
+  return heights > 0.0f ? (top - bottom) * float(isl.bodyCount) / heights : 0.0f;
+}
+
 // One sweep over island k: its contacts, then its joints. Joints after contacts: the joint tree,
 // solved exactly, ends each sweep intact. The other way round crates landing on a rope bridge left
 // their joints open, and Baumgarte turned that into a bounce.
@@ -581,9 +596,15 @@ void World::solveIslands(int iterations) {
   auto sweepIslandMain = [&](uint32_t k) {
     const Island& isl = islands_.islands[k];
     ContactConstraint* cs = constraints_.data() + isl.firstContact;
-    // Momentum on the contacts of joint-free islands; a joint tree is solved exactly every sweep.
+    // Momentum on the contacts of deep joint-free islands; a joint tree is solved exactly every sweep.
+    // Momentum carries the weight of a deep pile down faster than sweeps alone (a 30-box column
+    // stands on it), but a low pile in top-down order converges as fast without it, and there it
+    // only adds overshoot. Box pyramids at 10 iterations, 300 steps, solve error without / with
+    // momentum: base 10 0.028 / 0.059, base 15 0.117 / 0.160, base 20 0.27 / 0.33 but at 5
+    // iterations 0.84 / 0.70 and a third less drop, base 30 0.79 / 0.66 with half the drop.
     // A chain is solved exactly each sweep: nothing for momentum to carry.
-    const bool cg = settings_.accelerate && isl.jointCount == 0 && !isChain_[k];
+    const bool cg = settings_.accelerate && isl.jointCount == 0 && !isChain_[k] &&
+                    supportLayers(k) >= settings_.momentumLayers;
     const bool wide = isWide(k);
     const LaneBatches lb = wide ? lanesOf(k) : LaneBatches{};
     double lastChange = 0.0;

@@ -39,6 +39,9 @@ struct WorldSettings {
   float maxPushVelocity = 0.2f;     ///< cap on the Baumgarte push-out speed (m/s)
   bool topDownOrder = true;         ///< solve the highest contacts of an island first
   bool accelerate = true;           ///< conjugate-gradient momentum between sweeps (contact_solver.h)
+  /// Momentum only for islands at least this many layers of bodies deep (World::supportLayers): it
+  /// carries a deep pile's weight down, and only adds overshoot to a low one (world.cpp).
+  float momentumLayers = 16.0f;
   bool coldStartFromWeight = true;  ///< new contacts of a resting pile start from the weight they carry
   /// Sweep contacts kLanes manifolds at a time with SIMD, in lane batches (wide_contact_solver.h,
   /// lane_batches.h). Off by default: 3.8× faster per manifold in cache, but no faster yet on whole
@@ -207,6 +210,9 @@ class World {
   LaneBatches lanesOf(uint32_t island);
   /// Island k's contacts are swept by the wide solver (packed this step).
   bool isWide(uint32_t island) const;
+  /// Layers of bodies the island's weight rests through: its height along `up` over its bodies'
+  /// mean height (a pyramid of base 10 has 10, a 30-box column 30).
+  float supportLayers(uint32_t island) const;
 
   std::vector<Joint> joints_;
   std::vector<JointConstraint> jointConstraints_;  // solver rows, grouped by island like constraints_
