@@ -17,6 +17,7 @@ WorldSettings worldSettingsFor(const SceneDesc& scene) {
   s.slop = scene.settings.slop;
   s.sleeping = scene.settings.sleeping;
   s.accelerate = scene.settings.accelerate;
+  s.momentumLayers = scene.settings.momentumLayers;
   s.chainSolve = scene.settings.chainSolve;
   s.wideSolve = scene.settings.wideSolve;
   s.reuseManifolds = scene.settings.reuseManifolds;

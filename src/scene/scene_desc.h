@@ -93,6 +93,7 @@ struct SimSettings {
   float slop = 0.005f;      ///< allowed penetration (m) before position correction
   bool sleeping = false;    ///< bodies (islands) at rest go to sleep
   bool accelerate = true;   ///< conjugate-gradient momentum between solver sweeps
+  float momentumLayers = 16.0f;  ///< momentum only for islands at least this many layers deep (docs/solver.md)
   bool chainSolve = true;   ///< exact solve of chain-shaped islands (stacks): dynamics/contact_chain.h
   bool wideSolve = false;   ///< SIMD sweeps over lane batches: dynamics/wide_contact_solver.h
   bool reuseManifolds = true;  ///< keep manifolds of pairs at rest: collision/manifold_cache.h

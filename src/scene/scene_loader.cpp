@@ -54,8 +54,8 @@ std::string syntaxMessage(const std::string& what) {
 }
 
 void parseSettings(const JsonNode& node, SimSettings& s) {
-  checkKeys(node, {"dt", "gravity", "iterations", "omega", "beta", "slop", "sleeping", "accelerate", "chain_solve", "wide_solve",
-                   "reuse_manifolds", "frames"});
+  checkKeys(node, {"dt", "gravity", "iterations", "omega", "beta", "slop", "sleeping", "accelerate", "momentum_layers",
+                   "chain_solve", "wide_solve", "reuse_manifolds", "frames"});
   s.dt = optPositive(node, "dt", s.dt);
   if (s.dt > 1.0f) fail(node.member("dt"), "must be <= 1 s (got " + formatNumber(s.dt) + "; 60 Hz is 0.0166666667)");
   const JsonNode g = node.member("gravity");
@@ -74,6 +74,7 @@ void parseSettings(const JsonNode& node, SimSettings& s) {
   s.slop = optNonNegative(node, "slop", s.slop);
   if (node.member("sleeping").present()) s.sleeping = readBool(node.member("sleeping"));
   if (node.member("accelerate").present()) s.accelerate = readBool(node.member("accelerate"));
+  s.momentumLayers = optNonNegative(node, "momentum_layers", s.momentumLayers);
   if (node.member("chain_solve").present()) s.chainSolve = readBool(node.member("chain_solve"));
   if (node.member("wide_solve").present()) s.wideSolve = readBool(node.member("wide_solve"));
   if (node.member("reuse_manifolds").present()) s.reuseManifolds = readBool(node.member("reuse_manifolds"));

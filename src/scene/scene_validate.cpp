@@ -185,7 +185,9 @@ bool validateScene(const SceneDesc& scene, SceneIssue& issue) {
   if (s.iterations < 1) return c.bad("settings.iterations", "must be >= 1 (got " + std::to_string(s.iterations) + ")");
   if (!c.isFiniteNum("settings.omega", s.omega)) return false;
   if (!(s.omega >= 1.0f && s.omega < 2.0f)) return c.bad("settings.omega", "must be in [1, 2) (got " + formatNumber(s.omega) + ")");
-  if (!c.nonNegative("settings.beta", s.beta) || !c.nonNegative("settings.slop", s.slop)) return false;
+  if (!c.nonNegative("settings.beta", s.beta) || !c.nonNegative("settings.slop", s.slop) ||
+      !c.nonNegative("settings.momentum_layers", s.momentumLayers))
+    return false;
   if (s.beta > 1.0f) return c.bad("settings.beta", "must be in [0, 1] (got " + formatNumber(s.beta) + ")");
   if (s.frames < 1) return c.bad("settings.frames", "must be >= 1 (got " + std::to_string(s.frames) + ")");
 

@@ -44,6 +44,10 @@ TEST(ValidateScene, RejectsEachBrokenInvariant) {
   EXPECT_EQ(issueOf(s), "settings.omega: must be in [1, 2) (got 2)");
 
   s = validScene();
+  s.settings.momentumLayers = -1.0f;
+  EXPECT_EQ(issueOf(s), "settings.momentum_layers: must be >= 0 (got -1)");
+
+  s = validScene();
   s.settings.iterations = 0;
   EXPECT_EQ(issueOf(s), "settings.iterations: must be >= 1 (got 0)");
 
