@@ -619,7 +619,7 @@ inline void restartDirectionOf(ContactConstraint& c) {
   store(c.direction + kMaxManifoldPoints, load(c.delta + kMaxManifoldPoints));
 }
 
-template <bool Restart>
+template <bool Restart, bool MeasureChange>
 SweepResult sweep(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias) {
   float residual = 0.0f;
   double change = 0.0;
@@ -634,7 +634,7 @@ SweepResult sweep(BodyStore& bodies, ContactConstraint* cs, size_t n, float omeg
     // ends with the normal rows satisfied (see solveNormalBlock).
     frictionRows(c, va, wa, vb, wb, omega);
     residual = std::max(residual, normalRows(c, va, wa, vb, wb, omega, useBias));
-    change += rowsChange(c);
+    if constexpr (MeasureChange) change += rowsChange(c);
     if (c.dynA) {
       store3(bodies.v[c.a], va);
       store3(bodies.w[c.a], wa);
@@ -650,8 +650,11 @@ SweepResult sweep(BodyStore& bodies, ContactConstraint* cs, size_t n, float omeg
 }  // namespace
 
 SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias,
-                           bool restartDirection) {
-  return restartDirection ? sweep<true>(bodies, cs, n, omega, useBias) : sweep<false>(bodies, cs, n, omega, useBias);
+                           bool restartDirection, bool measureChange) {
+  // A restarted direction is always followed by a momentum step, which needs the change.
+  if (restartDirection) return sweep<true, true>(bodies, cs, n, omega, useBias);
+  return measureChange ? sweep<false, true>(bodies, cs, n, omega, useBias)
+                       : sweep<false, false>(bodies, cs, n, omega, useBias);
 }
 
 void startDirection(ContactConstraint* cs, size_t n) {

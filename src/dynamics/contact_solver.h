@@ -185,8 +185,9 @@ struct SweepResult {
 /// integrated, which removes the position-correction velocity. `restartDirection`: each constraint's
 /// direction first takes its last sweep's change, as startDirection would, while the constraint is
 /// in cache for the sweep anyway (a pass of its own cost a serial 0.85 ms of large_pyramid's 2-thread step).
+/// `measureChange` false: SweepResult::change is left 0 (only the momentum step reads it).
 SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias,
-                           bool restartDirection = false);
+                           bool restartDirection = false, bool measureChange = true);
 
 /// Nonsmooth nonlinear conjugate gradient on top of the sweeps (after Silcowitz, Niebe and Erleben
 /// 2010). A sweep's impulse change is the negative gradient of the projected problem; momentum

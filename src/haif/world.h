@@ -145,8 +145,9 @@ class World {
   /// Against gravity (+y without gravity): what top-down order and strips are measured along.
   Vec3 upDirection() const;
   /// `restartDirection`: the island's momentum direction restarts from the last sweep's change
-  /// (see solveIteration); only for joint-free islands swept plainly or wide.
-  SweepResult sweepIsland(uint32_t island, bool useBias, bool restartDirection = false);
+  /// (see solveIteration); only for joint-free islands swept plainly or wide. `measureChange`:
+  /// fill SweepResult::change, which only the momentum step needs.
+  SweepResult sweepIsland(uint32_t island, bool useBias, bool restartDirection = false, bool measureChange = false);
   void shareSpareIterations(int iterations);
   void relaxIslands(int relaxIterations);
   void summariseIterations();
