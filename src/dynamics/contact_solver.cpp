@@ -211,12 +211,23 @@ bool prepareBlockInverse(F4 s, F4 t, ContactConstraint& cc) {
 
 namespace {
 
-// Stores the three friction rows' parts from their components (lanes: tangent 1, tangent 2,
-// twist, 0).
-inline void storeRows(RowVectors& rows, F4 x, F4 y, F4 z) {
-  store(rows.x, x);
-  store(rows.y, y);
-  store(rows.z, z);
+// Four rows' 3-vectors as vectors of their components, one lane a row (as RowVectors holds them).
+struct Lanes3 {
+  F4 x, y, z;
+};
+
+// m times each row's vector.
+inline Lanes3 times(const Mat3& m, const Lanes3& v) {
+  return {m(0, 0) * v.x + m(0, 1) * v.y + m(0, 2) * v.z, m(1, 0) * v.x + m(1, 1) * v.y + m(1, 2) * v.z,
+          m(2, 0) * v.x + m(2, 1) * v.y + m(2, 2) * v.z};
+}
+
+inline F4 dot(const Lanes3& a, const Lanes3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+inline void storeRows(RowVectors& rows, const Lanes3& v) {
+  store(rows.x, v.x);
+  store(rows.y, v.y);
+  store(rows.z, v.z);
 }
 
 }  // namespace
@@ -257,31 +268,16 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   }
   const F4 ax = px - pA.x(), ay = py - pA.y(), az = pz - pA.z();
   const F4 bx = px - pB.x(), by = py - pB.y(), bz = pz - pB.z();
-  const F4 rAxnX = ay * nz - az * ny, rAxnY = az * nx - ax * nz, rAxnZ = ax * ny - ay * nx;
-  const F4 rBxnX = by * nz - bz * ny, rBxnY = bz * nx - bx * nz, rBxnZ = bx * ny - by * nx;
-  const F4 iAnX = iA(0, 0) * rAxnX + iA(0, 1) * rAxnY + iA(0, 2) * rAxnZ;
-  const F4 iAnY = iA(1, 0) * rAxnX + iA(1, 1) * rAxnY + iA(1, 2) * rAxnZ;
-  const F4 iAnZ = iA(2, 0) * rAxnX + iA(2, 1) * rAxnY + iA(2, 2) * rAxnZ;
-  const F4 iBnX = iB(0, 0) * rBxnX + iB(0, 1) * rBxnY + iB(0, 2) * rBxnZ;
-  const F4 iBnY = iB(1, 0) * rBxnX + iB(1, 1) * rBxnY + iB(1, 2) * rBxnZ;
-  const F4 iBnZ = iB(2, 0) * rBxnX + iB(2, 1) * rBxnY + iB(2, 2) * rBxnZ;
-  store(cc.normal.x, nx);
-  store(cc.normal.y, ny);
-  store(cc.normal.z, nz);
-  store(cc.rAxn.x, rAxnX);
-  store(cc.rAxn.y, rAxnY);
-  store(cc.rAxn.z, rAxnZ);
-  store(cc.rBxn.x, rBxnX);
-  store(cc.rBxn.y, rBxnY);
-  store(cc.rBxn.z, rBxnZ);
-  store(cc.iAn.x, iAnX);
-  store(cc.iAn.y, iAnY);
-  store(cc.iAn.z, iAnZ);
-  store(cc.iBn.x, iBnX);
-  store(cc.iBn.y, iBnY);
-  store(cc.iBn.z, iBnZ);
+  const Lanes3 rAxn{ay * nz - az * ny, az * nx - ax * nz, ax * ny - ay * nx};
+  const Lanes3 rBxn{by * nz - bz * ny, bz * nx - bx * nz, bx * ny - by * nx};
+  const Lanes3 iAn = times(iA, rAxn), iBn = times(iB, rBxn);
+  storeRows(cc.normal, {nx, ny, nz});
+  storeRows(cc.rAxn, rAxn);
+  storeRows(cc.rBxn, rBxn);
+  storeRows(cc.iAn, iAn);
+  storeRows(cc.iBn, iBn);
   const simd4::I4 used = simd4::I4{0, 1, 2, 3} < cc.count;
-  const F4 k = mSum + (rAxnX * iAnX + rAxnY * iAnY + rAxnZ * iAnZ) + (rBxnX * iBnX + rBxnY * iBnY + rBxnZ * iBnZ);
+  const F4 k = mSum + dot(rAxn, iAn) + dot(rBxn, iBn);
   store(cc.normalMass, used & (k > 0.0f) ? 1.0f / k : F4{});
 
   // Main sweeps: close a speculative gap exactly, push penetration beyond the slop out
@@ -289,8 +285,8 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   // push-out, so it does not become kinetic energy; a contact that pushed this step and was
   // approached fast enough bounces, from where it now is.
   const Vec3 dv = vB - vA;
-  const F4 vn = nx * dv.x() + ny * dv.y() + nz * dv.z() + (rBxnX * wB.x() + rBxnY * wB.y() + rBxnZ * wB.z()) -
-                (rAxnX * wA.x() + rAxnY * wA.y() + rAxnZ * wA.z());
+  const F4 vn = nx * dv.x() + ny * dv.y() + nz * dv.z() + (rBxn.x * wB.x() + rBxn.y * wB.y() + rBxn.z * wB.z()) -
+                (rAxn.x * wA.x() + rAxn.y * wA.y() + rAxn.z * wA.z());
   const F4 speculative = depth < 0.0f ? depth * invDt : F4{};  // approach by the gap, no faster
   const F4 excess = simd4::clampNonNegative(depth - p.slop) * (p.beta * invDt);
   const F4 push = excess < p.maxPushVelocity ? excess : F4{} + p.maxPushVelocity;
@@ -315,33 +311,26 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   const F4 tx{t1.x(), t2.x(), 0.0f, 0.0f}, ty{t1.y(), t2.y(), 0.0f, 0.0f}, tz{t1.z(), t2.z(), 0.0f, 0.0f};
   // Angular parts: r × t for the tangent rows, the normal itself for the twist.
   const simd4::I4 twistLane = simd4::I4{0, 1, 2, 3} == 2;
-  const F4 aAx = twistLane ? F4{} + n.x() : rA.y() * tz - rA.z() * ty;
-  const F4 aAy = twistLane ? F4{} + n.y() : rA.z() * tx - rA.x() * tz;
-  const F4 aAz = twistLane ? F4{} + n.z() : rA.x() * ty - rA.y() * tx;
-  const F4 aBx = twistLane ? F4{} + n.x() : rB.y() * tz - rB.z() * ty;
-  const F4 aBy = twistLane ? F4{} + n.y() : rB.z() * tx - rB.x() * tz;
-  const F4 aBz = twistLane ? F4{} + n.z() : rB.x() * ty - rB.y() * tx;
-  const F4 iAx = iA(0, 0) * aAx + iA(0, 1) * aAy + iA(0, 2) * aAz;
-  const F4 iAy = iA(1, 0) * aAx + iA(1, 1) * aAy + iA(1, 2) * aAz;
-  const F4 iAz = iA(2, 0) * aAx + iA(2, 1) * aAy + iA(2, 2) * aAz;
-  const F4 iBx = iB(0, 0) * aBx + iB(0, 1) * aBy + iB(0, 2) * aBz;
-  const F4 iBy = iB(1, 0) * aBx + iB(1, 1) * aBy + iB(1, 2) * aBz;
-  const F4 iBz = iB(2, 0) * aBx + iB(2, 1) * aBy + iB(2, 2) * aBz;
-  storeRows(cc.frictionLinear, tx, ty, tz);
-  storeRows(cc.frictionAngularA, aAx, aAy, aAz);
-  storeRows(cc.frictionAngularB, aBx, aBy, aBz);
-  storeRows(cc.frictionInverseA, iAx, iAy, iAz);
-  storeRows(cc.frictionInverseB, iBx, iBy, iBz);
+  auto angular = [&](const Vec3& r) {
+    return Lanes3{twistLane ? F4{} + n.x() : r.y() * tz - r.z() * ty, twistLane ? F4{} + n.y() : r.z() * tx - r.x() * tz,
+                  twistLane ? F4{} + n.z() : r.x() * ty - r.y() * tx};
+  };
+  const Lanes3 lin{tx, ty, tz}, aA = angular(rA), aB = angular(rB);
+  const Lanes3 invA = times(iA, aA), invB = times(iB, aB);
+  storeRows(cc.frictionLinear, lin);
+  storeRows(cc.frictionAngularA, aA);
+  storeRows(cc.frictionAngularB, aB);
+  storeRows(cc.frictionInverseA, invA);
+  storeRows(cc.frictionInverseB, invB);
   // The rows' coupling K (the tangents are orthonormal and the twist has no linear part, so the
   // linear term adds mSum on the tangents' diagonal only): the diagonal lane by lane, and with the
   // inverse parts turned by one lane, K01 (lane 0), K12 (lane 1) and K20 (lane 2).
-  const F4 diag = mSum * (tx * tx + ty * ty + tz * tz) + (aAx * iAx + aAy * iAy + aAz * iAz) +
-                  (aBx * iBx + aBy * iBy + aBz * iBz);
-  const simd4::I4 turn{1, 2, 0, 3};
-  const F4 offDiag = (aAx * __builtin_shuffle(iAx, turn) + aAy * __builtin_shuffle(iAy, turn) +
-                      aAz * __builtin_shuffle(iAz, turn)) +
-                     (aBx * __builtin_shuffle(iBx, turn) + aBy * __builtin_shuffle(iBy, turn) +
-                      aBz * __builtin_shuffle(iBz, turn));
+  const F4 diag = mSum * dot(lin, lin) + dot(aA, invA) + dot(aB, invB);
+  auto turned = [](const Lanes3& v) {
+    const simd4::I4 turn{1, 2, 0, 3};
+    return Lanes3{__builtin_shuffle(v.x, turn), __builtin_shuffle(v.y, turn), __builtin_shuffle(v.z, turn)};
+  };
+  const F4 offDiag = dot(aA, turned(invA)) + dot(aB, turned(invB));
   // The two tangent rows share lever arms, so they couple: solve them as a 2x2 block.
   const float k11 = diag[0], k22 = diag[1], k12 = offDiag[0];
   const float det = k11 * k22 - k12 * k12;

@@ -1,6 +1,7 @@
 // The normal rows of a manifold are solved as one block: exactly (one product with the block's
 // pseudo-inverse) while every point stays loaded, by projected passes otherwise.
 #include "dynamics/contact_solver.h"
+#include "tilted_patch.h"
 
 #include <gtest/gtest.h>
 
@@ -123,32 +124,9 @@ TEST(NormalBlock, PlaneBlockIsThePseudoInverseOfTheCouplingOnItsRange) {
   // Two dynamic bodies with unequal, turned inertias, a tilted contact plane and an irregular
   // quadrilateral of points at different depths: G must satisfy K G K = K and G K G = G, and
   // solve any loaded right-hand side exactly (K G b = b for b in K's range).
-  BodyStore bodies;
-  Transform ta, tb;
-  ta.p = Vec3(0.3f, -0.6f, 0.2f);
-  ta.q = Quat(Eigen::AngleAxisf(0.7f, Vec3(1.0f, 2.0f, 0.5f).normalized()));
-  tb.p = Vec3(-0.2f, 0.9f, 0.4f);
-  tb.q = Quat(Eigen::AngleAxisf(-1.1f, Vec3(0.3f, 0.2f, 1.0f).normalized()));
-  bodies.add(BodyKind::Dynamic, ta, 2.0f, Vec3(0.9f, 2.5f, 4.0f).asDiagonal());
-  bodies.add(BodyKind::Dynamic, tb, 0.5f, Vec3(6.0f, 1.5f, 3.0f).asDiagonal());
-  Contact contact;
-  contact.a = 0;
-  contact.b = 1;
-  contact.friction = 0.5f;
-  const Vec3 n = Vec3(0.2f, 1.0f, -0.3f).normalized();
-  Vec3 u, w;
-  orthonormalBasis(n, u, w);
-  const float st[4][2] = {{-0.4f, -0.3f}, {0.6f, -0.2f}, {0.3f, 0.5f}, {-0.5f, 0.35f}};
-  contact.manifold.count = 4;
-  for (int i = 0; i < 4; ++i) {
-    ContactPoint& p = contact.manifold.points[i];
-    p.position = Vec3(0.05f, 0.1f, 0.3f) + st[i][0] * u + st[i][1] * w + 0.01f * float(i) * n;
-    p.normal = n;
-    p.depth = 0.002f * float(i);
-    p.id = uint32_t(i);
-  }
+  const test::TiltedPatch s;
   ContactConstraint c;
-  prepareContact(bodies, contact, 0, params(), c);
+  prepareContact(s.bodies, s.contact, 0, params(), c);
   ASSERT_TRUE(c.blockExact);
   float coupling[4][4];
   normalCoupling(c, coupling);
