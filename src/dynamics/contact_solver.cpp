@@ -177,7 +177,7 @@ bool prepareBlockInverse(F4 s, F4 t, ContactConstraint& cc) {
   const int m = cc.count;
   if (m < 2) return false;
   const F4 nx = load(cc.normal.x), ny = load(cc.normal.y), nz = load(cc.normal.z);
-  const F4 dx = nx - nx[0], dy = ny - ny[0], dz = nz - nz[0];
+  const F4 dx = nx - simd4::splat<0>(nx), dy = ny - simd4::splat<0>(ny), dz = nz - simd4::splat<0>(nz);
   const simd4::I4 points = simd4::I4{0, 1, 2, 3} < m;
   if (simd4::laneMax(points ? dx * dx + dy * dy + dz * dz : F4{}) > 1e-8f) return false;
   const D4 used{1.0, 1.0, m > 2 ? 1.0 : 0.0, m > 3 ? 1.0 : 0.0};
@@ -386,8 +386,8 @@ inline void apply(BodyStore& bodies, const ContactConstraint& c, F4 P, F4 angA, 
   }
 }
 
-// Friction impulses are vectors (tangent 1, tangent 2, twist, 0); their lanes stay in vectors, as
-// GCC assembles a vector from scalars through memory.
+// Friction impulses are vectors (tangent 1, tangent 2, twist, 0), and the helpers below keep them
+// in vectors: GCC assembles a vector from scalars through memory.
 
 // Scales the tangent impulses (lanes 0 and 1) back onto the circle of radius `limit` when they lie
 // outside it (the other lanes scale too; callers take only lanes 0 and 1).
@@ -514,8 +514,6 @@ inline F4 solveNormalBlock(ContactConstraint& c, F4 va, F4 wa, F4 vb, F4 wb,
   return next - start;
 }
 
-// The parts of a sweep, inlined into solveIteration's loop (the exported functions below wrap them
-// for the chain solver): called out of line, large_pyramid's sweeps took 7% longer.
 // The twist row's constants as one vector: its coupling with tangent 1 and tangent 2, its mass and
 // its lever (see ContactConstraint; they lie side by side).
 static_assert(offsetof(ContactConstraint, twistMass) == offsetof(ContactConstraint, twistCoupling) + 8 &&
@@ -527,11 +525,13 @@ inline F4 twistConstants(const ContactConstraint& c) {
   return v;
 }
 
+// The parts of a sweep, inlined into solveIteration's loop (the exported functions below wrap them
+// for the chain solver): called out of line, large_pyramid's sweeps took 7% longer.
 [[gnu::always_inline]] inline void frictionRows(ContactConstraint& c, F4& va, F4& wa, F4& vb, F4& wb,
                                                  float omega) {
   using simd4::splat;
   // Bounded by the normal impulses of the previous sweep.
-  const F4 limit = splat<0>(F4{} + c.friction * simd4::laneSum(load(c.normalImpulse)));
+  const F4 limit = F4{} + c.friction * simd4::laneSum(load(c.normalImpulse));
   const F4 vf = rowVelocities(c.frictionLinear, c.frictionAngularA, c.frictionAngularB, va, wa, vb, wb);
   const F4 old = load(c.frictionImpulse);
   const F4 tc = twistConstants(c);  // coupling 1, coupling 2, mass, radius
