@@ -375,17 +375,6 @@ namespace {
 inline F4 load3(const Vec3& v) { return F4{v.x(), v.y(), v.z(), 0.0f}; }
 inline void store3(Vec3& out, F4 v) { out = Vec3(v[0], v[1], v[2]); }
 
-inline void apply(BodyStore& bodies, const ContactConstraint& c, F4 P, F4 angA, F4 angB) {
-  if (c.dynA) {
-    store3(bodies.v[c.a], load3(bodies.v[c.a]) - c.invMassA * P);
-    store3(bodies.w[c.a], load3(bodies.w[c.a]) - angA);
-  }
-  if (c.dynB) {
-    store3(bodies.v[c.b], load3(bodies.v[c.b]) + c.invMassB * P);
-    store3(bodies.w[c.b], load3(bodies.w[c.b]) + angB);
-  }
-}
-
 // Friction impulses are vectors (tangent 1, tangent 2, twist, 0), and the helpers below keep them
 // in vectors: GCC assembles a vector from scalars through memory.
 
@@ -427,6 +416,21 @@ inline RowImpulses frictionImpulses(const ContactConstraint& c, F4 a) {
   return rowImpulses(c.frictionLinear, c.frictionInverseA, c.frictionInverseB, a);
 }
 
+// Applies impulse changes of a constraint's normal rows (dn) and friction rows (df) to its bodies'
+// stored velocities (the warm start and the momentum step; a sweep holds the velocities itself).
+inline void applyToBodies(BodyStore& bodies, const ContactConstraint& c, F4 dn, F4 df) {
+  const RowImpulses r = normalImpulses(c, dn), f = frictionImpulses(c, df);
+  const F4 P = r.linear + f.linear;
+  if (c.dynA) {
+    store3(bodies.v[c.a], load3(bodies.v[c.a]) - c.invMassA * P);
+    store3(bodies.w[c.a], load3(bodies.w[c.a]) - (r.angularA + f.angularA));
+  }
+  if (c.dynB) {
+    store3(bodies.v[c.b], load3(bodies.v[c.b]) + c.invMassB * P);
+    store3(bodies.w[c.b], load3(bodies.w[c.b]) + (r.angularB + f.angularB));
+  }
+}
+
 // J v of four rows at the given body velocities: lin·(vb − va) + angB·wb − angA·wa.
 inline F4 rowVelocities(const RowVectors& lin, const RowVectors& angA, const RowVectors& angB, F4 va, F4 wa, F4 vb,
                         F4 wb) {
@@ -458,9 +462,7 @@ void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n) {
   for (size_t k = 0; k < n; ++k) {
     const ContactConstraint& c = cs[k];
     if (c.count == 0) continue;
-    const RowImpulses r = normalImpulses(c, load(c.normalImpulse));
-    const RowImpulses f = frictionImpulses(c, load(c.frictionImpulse));
-    apply(bodies, c, r.linear + f.linear, r.angularA + f.angularA, r.angularB + f.angularB);
+    applyToBodies(bodies, c, load(c.normalImpulse), load(c.frictionImpulse));
   }
 }
 
@@ -665,9 +667,7 @@ void accelerate(BodyStore& bodies, ContactConstraint* cs, size_t n, float beta) 
     const F4 step = oldFriction + beta * df;
     const F4 nextFriction = joinFriction(ontoFrictionCircle(step, limit), clampTwist(step, F4{} + limit * c.twistRadius));
     store(c.frictionImpulse, nextFriction);
-    const RowImpulses r = normalImpulses(c, next - old);
-    const RowImpulses f = frictionImpulses(c, nextFriction - oldFriction);
-    apply(bodies, c, r.linear + f.linear, r.angularA + f.angularA, r.angularB + f.angularB);
+    applyToBodies(bodies, c, next - old, nextFriction - oldFriction);
     store(d, beta * dn + load(c.delta));
     store(d + kMaxManifoldPoints, beta * df + load(c.delta + kMaxManifoldPoints));
   }
