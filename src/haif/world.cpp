@@ -9,6 +9,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_sort.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <algorithm>
@@ -94,6 +95,7 @@ uint32_t World::addBody(const BodyDef& def) {
   shapes_.push_back(def.shape);
   volume_.push_back(unit.mass);
   bounds_.push_back(computeAabb(def.shape, def.xf));
+  speedBound_.addBody(def.shape);
   if (def.shape.type == ShapeType::TriangleMesh) hasMesh_ = true;
   islandOfBody_.push_back(-1);
   broadPhase_.addBody(id, bounds_[id], def.kind == BodyKind::Static);
@@ -933,6 +935,25 @@ void World::detectSleep() {
   }
 }
 
+// ---- speed bound ---------------------------------------------------------------------------
+
+float World::waterLift() const {
+  if (water_.empty()) return 0.0f;
+  float water = 0.0f, lightest = 1e30f;
+  for (const WaterVolume& w : water_) water = std::max(water, w.density);
+  for (uint32_t i = 0; i < bodyCount(); ++i)
+    if (bodies_.kind[i] == BodyKind::Dynamic && volume_[i] > 0.0f) lightest = std::min(lightest, bodies_.mass[i] / volume_[i]);
+  return lightest < 1e30f ? water / lightest : 0.0f;
+}
+
+void World::boundSpeeds() {
+  std::atomic<uint32_t> slowed{0};
+  parallelFor(bodyCount(), 8192, [&](uint32_t b, uint32_t e) {
+    if (const uint32_t k = speedBound_.apply(bodies_, b, e)) slowed += k;
+  });
+  stats_.speedLimited += slowed.load();
+}
+
 // ---- step --------------------------------------------------------------------------------
 
 void World::step() {
@@ -945,7 +966,9 @@ void World::step() {
   stats_.budgetMs = settings_.budgetMs;
   stats_.stages = kStageBroadPhase | kStageNarrowPhase | kStageSolve;
 
-  // 1. External forces.
+  // 1. External forces (what they may add to any body's speed is noted first: the speed bound).
+  speedBound_.settings = settings_.speedBound;
+  speedBound_.update(bodies_, settings_.gravity, dt, waterLift());
   // A few operations a body: tasks of 8192 bodies, or the step pays more in task overhead than it saves.
   parallelFor(n, 8192, [&](uint32_t b, uint32_t e) { integrateVelocities(bodies_, b, e, settings_.gravity, dt); });
   if (!water_.empty()) {
@@ -997,13 +1020,15 @@ void World::step() {
   SolveObservation obs;
   obs.iterations = iterations;
 
-  // 7. Integration and sleep.
+  // 7. Integration and sleep; no body moves faster than the bound (speed_bound.h).
   const auto t2 = Clock::now();
+  boundSpeeds();
   parallelFor(n, 512, [&](uint32_t b, uint32_t e) {
     integratePositions(bodies_, b, e, dt, settings_.sleepLinear, settings_.sleepAngular);
   });
   const auto t3 = Clock::now();
   relaxIslands(relax);
+  boundSpeeds();
   if (!joints_.empty()) breakJoints();
   const double relaxMs = msSince(t3);
   stats_.solveMs += relaxMs;
@@ -1022,6 +1047,7 @@ void World::step() {
   }
   stats_.integrateMs = msSince(t2) - relaxMs;
 
+  speedBound_.noteLowest(bodies_, upDirection());
   // Counters.
   for (uint32_t i = 0; i < n; ++i) {
     if (bodies_.kind[i] != BodyKind::Dynamic) continue;

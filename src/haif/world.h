@@ -17,6 +17,7 @@
 #include "haif/islands.h"
 #include "haif/iteration_controller.h"
 #include "haif/lane_batches.h"
+#include "haif/speed_bound.h"
 #include "haif/step_stats.h"
 
 #include <tbb/task_arena.h>
@@ -50,6 +51,7 @@ struct WorldSettings {
   bool chainSolve = true;           ///< solve the normal rows of chain-shaped islands (stacks) exactly
   bool reuseManifolds = true;       ///< keep a pair's manifold while its bodies keep still (manifold_cache.h)
   JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)
+  SpeedBoundSettings speedBound;    ///< the bound on every body's speed (haif/speed_bound.h)
   bool sleeping = false;
   float timeToSleep = 0.5f;         ///< s an island must rest before it sleeps
   float sleepLinear = 0.05f;        ///< m/s
@@ -120,6 +122,8 @@ class World {
   /// Island index (into islands().islands) a body was solved in during the last step; -1 if none.
   int32_t islandOf(uint32_t body) const { return body < islandOfBody_.size() ? islandOfBody_[body] : -1; }
   const StepStats& lastStats() const { return stats_; }
+  /// The surface speed (m/s) no body may exceed in the last step (haif/speed_bound.h).
+  float speedLimit() const { return speedBound_.limit(); }
   uint64_t stepCount() const { return stepCount_; }
   bool hasWater() const { return !water_.empty(); }
 
@@ -237,6 +241,12 @@ class World {
   int solveErrorEvery_ = 0;
   double measurementMs_ = 0.0;  // time of this step's reference solve, excluded from its timings
   std::vector<Vec3> saveV_, saveW_, startV_, startW_, refV_, refW_;
+
+  SpeedBound speedBound_;
+  /// Slows bodies over the speed bound (all of them, in parallel); adds the count to the step's stats.
+  void boundSpeeds();
+  /// Water density over the lightest dynamic body's density (0 without water), for the speed bound.
+  float waterLift() const;
 
   StepStats stats_;
   uint64_t stepCount_ = 0;

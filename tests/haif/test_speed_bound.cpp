@@ -1,0 +1,94 @@
+// The bound on every body's speed (haif/speed_bound.h): it follows what the scene can give a body, it
+// slows only bodies over it, and it keeps a crushed body from being shot out.
+#include "haif/speed_bound.h"
+#include "support/physics_test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace haif;
+using namespace haif::test;
+
+namespace {
+
+float surfaceSpeed(const World& w, uint32_t i, float reach) {
+  return w.bodies().v[i].norm() + w.bodies().w[i].norm() * reach;
+}
+
+}  // namespace
+
+TEST(SpeedBound, LimitGrowsWithStartSpeedFallAndKinematicSurfaces) {
+  WorldSettings ws;
+  World w(ws);
+  addGround(w);
+  BodyDef d;
+  d.shape = Shape::sphere(0.5f);
+  d.xf.p = Vec3(0.0f, 20.5f, 0.0f);
+  d.linearVelocity = Vec3(3.0f, 0.0f, 0.0f);
+  w.addBody(d);
+  w.step();
+  const float factor = ws.speedBound.factor, floor = ws.speedBound.floor;
+  // A body's reach is its bounding box's half diagonal: the fall counts from its highest to its
+  // lowest point (it may tip over on the way).
+  const float reach = 0.5f * std::sqrt(3.0f);
+  EXPECT_NEAR(w.speedLimit(), factor * (3.0f + std::sqrt(2.0f * 9.81f * 2.0f * reach)) + floor, 0.5f);
+  for (int i = 0; i < 150; ++i) w.step();  // it has landed: a fall of 20 m
+  const float fall = std::sqrt(2.0f * 9.81f * (20.0f + 2.0f * reach));
+  EXPECT_NEAR(w.speedLimit(), factor * (3.0f + fall) + floor, 0.05f * fall * factor);
+  // A kinematic plate sweeping at 7 m/s may hit bodies at twice its speed.
+  BodyDef k;
+  k.kind = BodyKind::Kinematic;
+  k.shape = Shape::box(Vec3(1.0f, 0.1f, 1.0f));
+  k.xf.p = Vec3(50.0f, 5.0f, 0.0f);
+  k.linearVelocity = Vec3(7.0f, 0.0f, 0.0f);
+  w.addBody(k);
+  w.step();
+  EXPECT_NEAR(w.speedLimit(), factor * (3.0f + fall + 14.0f) + floor, 0.05f * fall * factor);
+}
+
+TEST(SpeedBound, SlowsOnlyBodiesOverTheLimitAlongTheirMotionAndStopsNaN) {
+  BodyStore bodies;
+  for (int i = 0; i < 3; ++i) {
+    bodies.add(BodyKind::Dynamic, Transform(), 1.0f, Mat3::Identity());
+  }
+  SpeedBound bound;
+  for (int i = 0; i < 3; ++i) bound.addBody(Shape::sphere(1.0f));
+  bodies.v[0] = Vec3(1.0f, 0.0f, 0.0f);  // the fastest start: 1 m/s
+  bound.update(bodies, Vec3::Zero(), 1.0f / 60.0f, 0.0f);
+  const float limit = bound.limit();
+  EXPECT_FLOAT_EQ(limit, bound.settings.factor * 1.0f + bound.settings.floor);
+  bodies.v[1] = Vec3(0.0f, 3.0f * limit, 0.0f);
+  bodies.w[1] = Vec3(0.0f, 0.0f, 1.0f * limit);  // reach sqrt(3) m (bounding box): surface speed 4.7 limit
+  bodies.v[2] = Vec3(std::nanf(""), 0.0f, 0.0f);
+  EXPECT_EQ(bound.apply(bodies, 0, 3), 2u);
+  EXPECT_EQ(bodies.v[0], Vec3(1.0f, 0.0f, 0.0f)) << "a body under the limit is untouched";
+  EXPECT_NEAR(bodies.v[1].y() + std::sqrt(3.0f) * bodies.w[1].z(), limit, 1e-4f * limit) << "slowed to the limit";
+  EXPECT_NEAR(bodies.v[1].y() / bodies.w[1].z(), 3.0f, 1e-4f) << "along its own motion";
+  EXPECT_EQ(bodies.v[2], Vec3::Zero()) << "a NaN velocity is stopped";
+}
+
+TEST(SpeedBound, CrushedBoxIsNotShotOut) {
+  // A kinematic slab comes down at 2 m/s onto a box on the ground and passes through where the box
+  // is: no solution exists. The box must leave at a bounded speed, never faster than the bound, and
+  // the steps where the bound acts are counted.
+  World w;
+  addGround(w);
+  const uint32_t box = addBox(w, Vec3(0.0f, 0.5f, 0.0f), Vec3::Constant(0.5f), 1.0f);
+  BodyDef slab;
+  slab.kind = BodyKind::Kinematic;
+  slab.shape = Shape::box(Vec3(3.0f, 0.25f, 3.0f));
+  slab.xf.p = Vec3(0.0f, 1.5f, 0.0f);
+  slab.linearVelocity = Vec3(0.0f, -2.0f, 0.0f);
+  w.addBody(slab);
+  float fastest = 0.0f;
+  const float reach = std::sqrt(3.0f) * 0.5f;
+  for (int i = 0; i < 90; ++i) {
+    w.step();
+    const float s = surfaceSpeed(w, box, reach);
+    ASSERT_TRUE(std::isfinite(s)) << "step " << i;
+    EXPECT_LE(s, w.speedLimit() * 1.0001f) << "step " << i;
+    fastest = std::max(fastest, s);
+  }
+  EXPECT_LE(fastest, 2.0f * (2.0f * 2.0f) + 2.0f + 1e-3f) << "2 x (2 x the slab's speed) + floor";
+}
