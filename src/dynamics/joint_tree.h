@@ -30,6 +30,11 @@ class JointTree {
   /// fraction of per step; this takes it out to second order.
   void project(BodyStore& bodies, const JointConstraint* js);
   uint32_t size() const { return static_cast<uint32_t>(order_.size()); }
+  /// Joints of the last build that close a loop through other bodies (solved softly, outside the
+  /// tree); a second joint between two bodies already joined is not counted.
+  uint32_t loops() const { return loops_; }
+  /// The tree is dropped when more than one joint in this many closes a loop (a grid: one in two).
+  static constexpr uint32_t kMaxLoopShare = 8;
 
  private:
   struct Block {
@@ -56,6 +61,7 @@ class JointTree {
   };
 
   uint32_t find(uint32_t x);
+  static uint64_t pairKey(const JointConstraint& j);  // the two body ids, smaller first
   double* block(const BodyNode& b, uint32_t row, uint32_t col) {
     return blocks_[b.blockStart + row * (row - 1) / 2 + col].a;
   }
@@ -64,10 +70,12 @@ class JointTree {
   void factor();
   void solveInPlace();  // rhs_ <- A^-1 rhs_ with the factors
 
+  uint32_t loops_ = 0;
   std::vector<Incidence> inc_;
   std::vector<BodyNode> bodies_;
   std::vector<uint32_t> uf_;
   std::vector<uint8_t> treeEdge_;      // per joint in js
+  std::vector<uint64_t> pairs_;        // pairKey of each tree joint between two dynamic bodies, sorted
   std::vector<int32_t> bodyOfSide_[2]; // per joint: BodyNode of its A / B end, -1 if not dynamic
   std::vector<uint32_t> stack_;
   std::vector<uint32_t> postOrder_;
@@ -75,7 +83,7 @@ class JointTree {
   std::vector<uint32_t> nodeOfJoint_;  // js index -> order_ index
   std::vector<uint32_t> clique_;       // per BodyNode: order_ indices of its joints, parent joint last
   std::vector<Block> diag_;            // per order_ entry: D_j, then its pseudo-inverse
-  std::vector<double> scale_;          // per order_ entry: largest diagonal entry before elimination
+  std::vector<double> scale_;          // per order_ entry: largest diagonal share of its heavier body
   std::vector<Block> blocks_;
   std::vector<Block> tmp_;             // L blocks of the joint being eliminated
   std::vector<double> rhs_;            // 6 per node
