@@ -46,7 +46,9 @@ struct BodyStore {
     const bool dyn = k == BodyKind::Dynamic;
     invMass.push_back(dyn && m > 0.0f ? 1.0f / m : 0.0f);
     inertiaLocal.push_back(dyn ? inertia : Mat3::Zero());
-    invInertiaLocal.push_back(dyn ? Mat3(inertia.inverse()) : Mat3::Zero());
+    // Inverted in double: the determinant of a float tensor under- or overflows for bodies below a
+    // millimetre or above a kilometre (a 0.5 mm sphere's is 1e-40), and the inverse came out NaN.
+    invInertiaLocal.push_back(dyn ? Mat3(inertia.cast<double>().inverse().cast<float>()) : Mat3::Zero());
     invInertiaWorld.push_back(Mat3::Zero());
     force.push_back(Vec3::Zero());
     torque.push_back(Vec3::Zero());

@@ -2,6 +2,7 @@
 
 #include "scene/json_reader.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace haif {
@@ -46,6 +47,35 @@ std::string hullPointsProblem(const std::vector<Vec3>& points) {
   for (const Vec3& p : points) depth = std::max(depth, std::fabs(normal.dot(p - p0)));
   if (depth <= 1e-5f * size) return "all hull points lie in one plane (a hull needs volume)";
   return "";
+}
+
+float shapeExtent(const ShapeDesc& s) {
+  switch (s.type) {
+    case ShapeType::Sphere: return 2.0f * s.radius;
+    case ShapeType::Box: return 2.0f * s.halfExtents.maxCoeff();
+    case ShapeType::Capsule: return 2.0f * (s.radius + s.halfHeight);
+    case ShapeType::ConvexHull: {
+      if (s.points.empty()) return 0.0f;
+      Vec3 lo = s.points[0], hi = s.points[0];
+      for (const Vec3& p : s.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+      return (hi - lo).maxCoeff();
+    }
+    default: return 0.0f;
+  }
+}
+
+float bodyMass(const SceneDesc& scene, const BodyDesc& b) {
+  if (b.mass > 0.0f) return b.mass;
+  const ShapeDesc& s = b.shape;
+  const double r = s.radius, pi = 3.14159265358979323846;
+  double volume = 0.0;
+  switch (s.type) {
+    case ShapeType::Sphere: volume = 4.0 / 3.0 * pi * r * r * r; break;
+    case ShapeType::Box: volume = 8.0 * double(s.halfExtents.x()) * s.halfExtents.y() * s.halfExtents.z(); break;
+    case ShapeType::Capsule: volume = pi * r * r * (2.0 * s.halfHeight + 4.0 / 3.0 * r); break;
+    default: return 0.0f;
+  }
+  return float(volume * scene.materials[b.material].density);
 }
 
 namespace {
@@ -138,10 +168,21 @@ bool checkBody(Checker& c, const SceneDesc& scene, const BodyDesc& b) {
       if (i >= b.renderMesh.vertices.size()) return c.bad("render_mesh.asset", "index out of range");
   }
   if (!c.isFiniteNum("mass", b.mass)) return false;
+  if (b.motion != MotionType::Static && !isStaticOnlyShape(b.shape.type)) {
+    const float size = shapeExtent(b.shape);
+    if (!(size >= kMinBodySize && size <= kMaxBodySize))
+      return c.bad("shape", "a moving body of " + formatNumber(size) + " m is outside the sizes the engine supports (" +
+                                formatNumber(kMinBodySize) + " to " + formatNumber(kMaxBodySize) + " m)");
+  }
   if (b.motion == MotionType::Dynamic) {
     if (b.mass < 0.0f) return c.bad("mass", "must be > 0 for a dynamic body (got " + formatNumber(b.mass) + ")");
     if (b.mass == 0.0f && !(scene.materials[b.material].density > 0.0f))
       return c.bad("mass", "a dynamic body needs a mass or a material with density > 0");
+    const float m = bodyMass(scene, b);
+    if (m != 0.0f && !(m >= kMinBodyMass && m <= kMaxBodyMass))
+      return c.bad("mass", "a mass of " + formatNumber(m) + " kg" + (b.mass > 0.0f ? "" : " (density x volume)") +
+                               " is outside the masses the engine supports (" + formatNumber(kMinBodyMass) + " to " +
+                               formatNumber(kMaxBodyMass) + " kg)");
   } else if (b.motion == MotionType::Static) {
     if (!b.linearVelocity.isZero() || !b.angularVelocity.isZero())
       return c.bad(b.linearVelocity.isZero() ? "angular_velocity" : "velocity",
@@ -158,6 +199,13 @@ bool checkJoint(Checker& c, const SceneDesc& scene, const JointDesc& j) {
   if (j.bodyA == j.bodyB) return c.bad("body_b", "a joint needs two different bodies");
   auto dynamic = [&](int32_t i) { return i >= 0 && scene.bodies[size_t(i)].motion == MotionType::Dynamic; };
   if (!dynamic(j.bodyA) && !dynamic(j.bodyB)) return c.bad("body_b", "a joint needs a dynamic body");
+  if (dynamic(j.bodyA) && dynamic(j.bodyB)) {
+    const float ma = bodyMass(scene, scene.bodies[size_t(j.bodyA)]), mb = bodyMass(scene, scene.bodies[size_t(j.bodyB)]);
+    if (ma > 0.0f && mb > 0.0f && std::max(ma, mb) > kMaxJointMassRatio * std::min(ma, mb))
+      return c.bad("body_b", "joins bodies of " + formatNumber(ma) + " and " + formatNumber(mb) + " kg: a mass ratio of 1:" +
+                                 formatNumber(std::max(ma, mb) / std::min(ma, mb)) + ", above the 1:" +
+                                 formatNumber(kMaxJointMassRatio) + " the joint solver holds");
+  }
   if (!c.finiteVec("anchor", j.anchorA) || !c.finiteVec("anchor", j.anchorB) || !c.finiteVec("axis", j.axis))
     return false;
   if (!(j.axis.norm() > 1e-6f)) return c.bad("axis", "must not be the zero vector");

@@ -3,6 +3,7 @@
 // reading; this is the final, format-independent net (and what code-built scenes should call).
 #pragma once
 
+#include "haif/body_limits.h"
 #include "scene/scene_desc.h"
 
 #include <string>
@@ -20,6 +21,12 @@ struct SceneIssue {
   /// "bodies[3].mass: must be > 0 (got -2)" (uses the body's `where`).
   std::string describe(const SceneDesc& scene) const;
 };
+
+/// Longest edge (m) of a movable shape's bounding box in its own frame (0 for static-only shapes).
+float shapeExtent(const ShapeDesc& s);
+/// Mass (kg) of a dynamic body: its own, or its material's density times its volume; 0 for a hull
+/// without an explicit mass (its volume is known only once the hull is built).
+float bodyMass(const SceneDesc& scene, const BodyDesc& b);
 
 /// Checks settings, materials, bodies, water volumes and joints. Returns false and fills `issue` with the
 /// first problem.

@@ -202,5 +202,28 @@ TEST(SceneErrors, FinalValidationPointsAtTheGeneratorThatMadeTheBody) {
   EXPECT_ERROR(text, "{\"type\": \"grid\"", "generators[0] #4.position: must be finite");
 }
 
+TEST(SceneErrors, BodiesOutsideTheSupportedSizesAndMassesAreRefused) {
+  EXPECT_ERROR(body("", R"({"type": "sphere", "radius": 1e-4})"), "{\"type\": \"sphere\"",
+               "bodies[0].shape: a moving body of 0.0002 m is outside the sizes the engine supports (0.001 to 1000 m)");
+  EXPECT_ERROR(body(R"("type": "kinematic")", R"({"type": "box", "half_extents": [600, 1, 1]})"), "{\"type\": \"box\"",
+               "bodies[0].shape: a moving body of 1200 m is outside");
+  EXPECT_ERROR(body(R"("mass": 1e13)"), "1e13", "bodies[0].mass: a mass of 1e+13 kg is outside the masses the engine supports");
+  // From density: a 2 mm sphere of 1e-6 kg/m^3 weighs 4e-15 kg.
+  const std::string light = "{\n  \"materials\": {\"fog\": {\"density\": 1e-6}},\n  \"bodies\": [\n    {\"shape\": {\"type\": "
+                            "\"sphere\", \"radius\": 0.001}, \"material\": \"fog\"}\n  ]\n}\n";
+  EXPECT_NE(parseError(light).find("bodies[0].mass: a mass of 4.188791e-15 kg (density x volume) is outside"), std::string::npos)
+      << parseError(light);
+  // A static ground may be larger than any moving body.
+  EXPECT_EQ(parseOk(body(R"("type": "static")", R"({"type": "box", "half_extents": [5000, 1, 5000]})")).bodies.size(), 1u);
+}
+
+TEST(SceneErrors, AJointOverTheSupportedMassRatioIsRefused) {
+  const std::string text =
+      "{\n  \"bodies\": [\n    {\"name\": \"a\", \"shape\": {\"type\": \"sphere\"}, \"mass\": 1},\n"
+      "    {\"name\": \"b\", \"shape\": {\"type\": \"sphere\"}, \"position\": [0, -1, 0], \"mass\": 1e6}\n  ],\n"
+      "  \"joints\": [{\"type\": \"ball\", \"body_a\": \"a\", \"body_b\": \"b\", \"anchor\": [0, -0.5, 0]}]\n}\n";
+  EXPECT_ERROR(text, "\"b\", \"anchor\"", "joints[0].body_b: joins bodies of 1 and 1000000 kg: a mass ratio of 1:1000000, above the 1:100000");
+}
+
 }  // namespace
 }  // namespace haif::test
