@@ -21,6 +21,8 @@ enum class StressCheckKind : uint8_t {
   AngularMomentumDrift,  ///< angular_momentum_drift: max over steps of | |L| - |L0| | / |L0| <= max
   IntermediateAxisFlip,  ///< intermediate_axis_flip: one body's axis turns over against its L >= min_flips times
   NoTunnel,              ///< no_tunnel: one body's centre never crosses a plane (metric: min distance on its side)
+  MaxJointError,         ///< max_joint_error_m: largest joint anchor error over the run (m) <= max
+  SpeedLimited,          ///< speed_limited: bodies the speed bound slowed, summed over the run, <= max
 };
 
 struct StressCheck {

@@ -24,6 +24,8 @@ const CheckInfo kChecks[] = {
     {"angular_momentum_drift", StressCheckKind::AngularMomentumDrift, "max", false, false},
     {"intermediate_axis_flip", StressCheckKind::IntermediateAxisFlip, "min_flips", true, true},
     {"no_tunnel", StressCheckKind::NoTunnel, "", true, true},
+    {"max_joint_error_m", StressCheckKind::MaxJointError, "max", false, false},
+    {"speed_limited", StressCheckKind::SpeedLimited, "max", false, false},
 };
 
 // A dynamic body named by its "name" or its index (generated bodies have no names).

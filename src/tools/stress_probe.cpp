@@ -49,7 +49,10 @@ void StressProbe::begin(const World& world, const std::vector<StressCheck>& chec
   observe(world);  // initial speeds count: a body thrown at 50 m/s has that peak speed
 }
 
-void StressProbe::afterStep(const World& world) { observe(world); }
+void StressProbe::afterStep(const World& world) {
+  speedLimited_ += world.lastStats().speedLimited;
+  observe(world);
+}
 
 void StressProbe::observe(const World& world) {
   const BodyStore& b = world.bodies();

@@ -26,7 +26,8 @@ class StressProbe {
 
   double peakSpeed() const { return peakSpeed_; }                      ///< m/s, any dynamic body
   double energyGainRatio() const { return energyGain_; }               ///< max (E - E0) / |E0|, >= 0
-  double angularMomentumDrift() const { return lDrift_; }              ///< max | |L| - |L0| | / |L0|
+  double angularMomentumDrift() const { return lDrift_; }
+  uint64_t speedLimited() const { return speedLimited_; }              ///< bodies the speed bound slowed, all steps              ///< max | |L| - |L0| | / |L0|
   /// Value of check `i` of those given to begin() for the checks that follow one body or plane:
   /// drop of its body (start minus current height), peak speed of its body, flips of its axis,
   /// smallest distance on its side of the plane.
@@ -46,6 +47,7 @@ class StressProbe {
   void observe(const World& world);
   double e0_ = 0.0, l0_ = 0.0;
   double peakSpeed_ = 0.0, energyGain_ = 0.0, lDrift_ = 0.0;
+  uint64_t speedLimited_ = 0;
   std::vector<Follow> follow_;
 };
 

@@ -41,6 +41,8 @@ StressCheckResult judge(const StressCheck& c, size_t i, const StressProbe& probe
     case StressCheckKind::PeakSpeed: r.value = c.body >= 0 ? probe.followed(i) : probe.peakSpeed(); break;
     case StressCheckKind::EnergyGainRatio: r.value = probe.energyGainRatio(); break;
     case StressCheckKind::AngularMomentumDrift: r.value = probe.angularMomentumDrift(); break;
+    case StressCheckKind::MaxJointError: r.value = metrics.maxJointError(); break;
+    case StressCheckKind::SpeedLimited: r.value = double(probe.speedLimited()); break;
     case StressCheckKind::IntermediateAxisFlip:
       r.value = probe.followed(i);
       atLeast = true;
@@ -125,6 +127,8 @@ bool runStressScene(const std::string& path, bool quick, int threads, StressScen
                {"peak_speed", probe.peakSpeed()},
                {"energy_gain_ratio", probe.energyGainRatio()},
                {"angular_momentum_drift", probe.angularMomentumDrift()},
+               {"max_joint_error_m", metrics.maxJointError()},
+               {"speed_limited", double(probe.speedLimited())},
                {"rms_velocity_last_s", metrics.rmsVelocityLastSecond()},
                {"ms_per_step_median", quantile(ms, 0.5)}};
   r.pass = !r.nan;

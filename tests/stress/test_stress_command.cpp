@@ -123,5 +123,29 @@ TEST(StressCommand, FailingCheckGivesExitOneAndSaysWhich) {
   EXPECT_EQ(j.at("failed"), 1);
 }
 
+TEST(StressCommand, JointErrorAndSpeedBoundChecksMeasureTheRun) {
+  // A 1 t block on a 1 kg link swinging from the horizontal: the joints hold to a few micrometres
+  // (a 1 um limit fails, 1 cm passes); nothing is fast enough for the speed bound to act.
+  const fs::path dir = scratchDir("haif_stress_joint_checks");
+  writeText(dir / "swing.json", R"({"name": "swing", "bodies": [
+    {"name": "link", "shape": {"type": "sphere", "radius": 0.2}, "position": [0.5, 5, 0], "mass": 1},
+    {"name": "block", "shape": {"type": "box"}, "position": [1.5, 5, 0], "mass": 1000}],
+  "joints": [{"type": "ball", "body_b": "link", "anchor": [0, 5, 0]},
+             {"type": "ball", "body_a": "link", "body_b": "block", "anchor": [1, 5, 0]}],
+  "stress": {"steps": 60, "checks": [{"check": "max_joint_error_m", "max": 1e-6},
+                                     {"check": "max_joint_error_m", "max": 0.01},
+                                     {"check": "speed_limited", "max": 0}]}})");
+  const ProcessResult r = runStress(dir, dir / "swing.json");
+  EXPECT_EQ(r.exitCode, 1) << r.out << r.err;
+  const nlohmann::json j = nlohmann::json::parse(readWholeFile(dir / "out" / "stress.json"));
+  const auto& c = j.at("scenes").at(0).at("criterion");
+  EXPECT_EQ(c.at(1).at("pass"), false);
+  EXPECT_GT(c.at(1).at("value").get<double>(), 1e-6);
+  EXPECT_EQ(c.at(2).at("pass"), true);
+  EXPECT_EQ(c.at(3).at("check"), "speed_limited");
+  EXPECT_EQ(c.at(3).at("value").get<double>(), 0.0);
+  EXPECT_EQ(c.at(3).at("pass"), true);
+}
+
 }  // namespace
 }  // namespace haif::test
