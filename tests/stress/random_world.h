@@ -4,6 +4,7 @@
 #pragma once
 
 #include "collision/convex_hull.h"
+#include "dynamics/joint.h"
 #include "haif/world.h"
 
 #include <cmath>
@@ -21,6 +22,7 @@ struct RandomWorld {
   double maxStartHeight = 0.0;  ///< m, highest centre
   double maxRadius = 0.0;       ///< m, largest bounding radius
   double overlapAllowance = 0.0;  ///< J: energy pushing bodies out of their initial overlaps may add
+  double kinematicSpeed = 0.0;    ///< m/s, fastest point of a kinematic mover (0: none)
 };
 
 inline float uniform(std::mt19937& rng, float lo, float hi) {
@@ -46,9 +48,15 @@ inline Quat randomRotation(std::mt19937& rng) {
   return q;
 }
 
+/// What a random world holds besides the ground and its free bodies.
+struct RandomWorldKinds {
+  bool joints = false;     ///< ball and hinge joints: chains, loops (a closed ring, a body joined twice)
+  bool kinematic = false;  ///< a kinematic paddle sweeping through the bodies
+};
+
 /// A random world: ground, 2 to 12 bodies in a 3 m x 3 m x 3 m region (so many start overlapping),
-/// sizes 0.05 to 1.5 m, masses 0.1 to 100 kg, speeds up to 10 m/s and 10 rad/s.
-inline RandomWorld makeRandomWorld(uint32_t seed) {
+/// sizes 0.05 to 1.5 m, masses 0.1 to 100 kg (ratios to 1:1000), speeds up to 10 m/s and 10 rad/s.
+inline RandomWorld makeRandomWorld(uint32_t seed, RandomWorldKinds kinds = {}) {
   std::mt19937 rng(seed);
   RandomWorld rw;
   WorldSettings ws;  // defaults: 60 Hz, 10 iterations, fixed mode
@@ -62,6 +70,7 @@ inline RandomWorld makeRandomWorld(uint32_t seed) {
 
   const int count = std::uniform_int_distribution<int>(2, 12)(rng);
   const char* names[] = {"sphere", "box", "capsule", "hull"};
+  std::vector<uint32_t> ids;
   for (int k = 0; k < count; ++k) {
     BodyDef d;
     const int type = std::uniform_int_distribution<int>(0, 3)(rng);
@@ -107,7 +116,7 @@ inline RandomWorld makeRandomWorld(uint32_t seed) {
     d.angularVelocity = randomUnit(rng) * uniform(rng, 0.0f, 10.0f);
     d.friction = uniform(rng, 0.0f, 1.0f);
     d.restitution = uniform(rng, 0.0f, 1.0f) < 0.7f ? 0.0f : uniform(rng, 0.0f, 0.8f);
-    w.addBody(d);
+    ids.push_back(w.addBody(d));
 
     rw.maxStartSpeed = std::max(rw.maxStartSpeed, double(d.linearVelocity.norm() + d.angularVelocity.norm() * radius));
     rw.maxStartHeight = std::max(rw.maxStartHeight, double(d.xf.p.y()));
@@ -120,6 +129,47 @@ inline RandomWorld makeRandomWorld(uint32_t seed) {
                   names[type], radius, d.mass, d.xf.p.x(), d.xf.p.y(), d.xf.p.z(), d.linearVelocity.x(),
                   d.linearVelocity.y(), d.linearVelocity.z(), d.angularVelocity.x(), d.angularVelocity.y(),
                   d.angularVelocity.z(), d.friction, d.restitution);
+    rw.description += line;
+  }
+
+  if (kinds.joints) {
+    // A chain through the bodies in order, closed into a ring half the time, one extra joint across it
+    // (a loop), and the first body pinned to the world a third of the time. Anchors at the midpoint of
+    // the two centres: the joints start satisfied, the bodies start far from the anchors.
+    auto join = [&](uint32_t a, uint32_t b, const Vec3& anchor) {
+      const bool hinge = uniform(rng, 0.0f, 1.0f) < 0.3f;
+      const Transform xa = a == kWorldBody ? Transform{} : w.bodies().xf[a], xb = w.bodies().xf[b];
+      w.addJoint(jointAtWorld(hinge ? JointType::Hinge : JointType::Ball, a, b, xa, xb, anchor, randomUnit(rng), Vec3::Zero()));
+      char line[128];
+      std::snprintf(line, sizeof line, "  %s joint %d-%d\n", hinge ? "hinge" : "ball", a == kWorldBody ? -1 : int(a),
+                    int(b));
+      rw.description += line;
+    };
+    auto mid = [&](uint32_t a, uint32_t b) -> Vec3 { return 0.5f * (w.bodies().xf[a].p + w.bodies().xf[b].p); };
+    for (size_t i = 1; i < ids.size(); ++i) join(ids[i - 1], ids[i], mid(ids[i - 1], ids[i]));
+    if (ids.size() >= 3 && uniform(rng, 0.0f, 1.0f) < 0.5f) join(ids.back(), ids.front(), mid(ids.back(), ids.front()));
+    if (ids.size() >= 4) join(ids[0], ids[2], mid(ids[0], ids[2]));
+    if (uniform(rng, 0.0f, 1.0f) < 0.33f) join(kWorldBody, ids[0], w.bodies().xf[ids[0]].p + Vec3(0.0f, 0.5f, 0.0f));
+  }
+  if (kinds.kinematic) {
+    // A paddle turning about y through the region, or sliding across it.
+    BodyDef k;
+    k.kind = BodyKind::Kinematic;
+    const Vec3 h(uniform(rng, 0.5f, 2.0f), uniform(rng, 0.1f, 0.5f), uniform(rng, 0.1f, 0.5f));
+    k.shape = Shape::box(h);
+    k.xf.p = Vec3(0.0f, uniform(rng, 0.2f, 1.5f), 0.0f);
+    if (uniform(rng, 0.0f, 1.0f) < 0.5f) {
+      k.angularVelocity = Vec3(0.0f, uniform(rng, 0.5f, 4.0f), 0.0f);
+      rw.kinematicSpeed = double(k.angularVelocity.norm() * h.norm());
+    } else {
+      k.xf.p.x() = -3.0f;
+      k.linearVelocity = Vec3(uniform(rng, 0.5f, 5.0f), 0.0f, 0.0f);
+      rw.kinematicSpeed = double(k.linearVelocity.norm());
+    }
+    w.addBody(k);
+    char line[128];
+    std::snprintf(line, sizeof line, "  kinematic paddle half=(%.2f %.2f %.2f) speed %.2f m/s\n", h.x(), h.y(), h.z(),
+                  rw.kinematicSpeed);
     rw.description += line;
   }
   return rw;
