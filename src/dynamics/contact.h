@@ -19,6 +19,10 @@ struct Contact {
   float twistImpulse = 0.0f;            ///< accumulated friction impulse about frictionNormal (N m s)
   Vec3 frictionNormal = Vec3::Zero();   ///< the axis twistImpulse was accumulated about
   ManifoldCache cache;                  ///< the manifold as last made, for reuse while the bodies keep still
+  /// Static friction anchor: one material point in each body, at the manifold's centre when the pair
+  /// last started sticking (body frames). Friction pulls their tangential drift back (prepareContact).
+  Vec3 anchorA = Vec3::Zero(), anchorB = Vec3::Zero();
+  bool anchored = false;
   bool touching() const { return manifold.count > 0; }
 };
 

@@ -285,7 +285,7 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
     ContactConstraint& c = cs[j];
     Vec3 va, wa, vb, wb;
     load(c, va, wa, vb, wb);
-    solveFrictionRows(c, va, wa, vb, wb, omega);
+    solveFrictionRows(c, va, wa, vb, wb, omega, useBias);
     store(c, va, wa, vb, wb);
     for (int i = 0; i < kMaxManifoldPoints; ++i) c.delta[i] = 0.0f;
     // Links take part that touch or still push; more join when the solve makes them touch. A

@@ -232,6 +232,8 @@ inline void storeRows(RowVectors& rows, const Lanes3& v) {
 
 }  // namespace
 
+// Tangential impulse, as a share of the friction limit, at which a contact counts as sliding.
+constexpr float kAnchorRelease = 0.98f;
 void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci, const SolverParams& p,
                     ContactConstraint& cc) {
   const uint32_t a = contact.a, b = contact.b;
@@ -300,6 +302,7 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
 
   // Friction at the centre of the points, about the mean normal. Its three rows are built at once,
   // one lane each (tangent 1, tangent 2, twist), as the sweep reads them.
+  store(cc.frictionBias, F4{});
   if (cc.count == 0) return;
   const float invCount = 1.0f / float(cc.count);
   const Vec3 centre(simd4::laneSum(px) * invCount, simd4::laneSum(py) * invCount, simd4::laneSum(pz) * invCount);
@@ -308,6 +311,20 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   Vec3 t1, t2;
   orthonormalBasis(n, t1, t2);
   const Vec3 rA = centre - pA, rB = centre - pB;
+  // Static friction anchor (Contact::anchorA/B): the tangential drift of the two material points,
+  // pulled back like penetration (Baumgarte, capped) in the main sweeps. Velocity-level friction
+  // never undoes a slow slide, and friction-held structures crept apart over long runs.
+  F4 anchorBias{};
+  if (contact.anchored && p.frictionAnchors) {
+    const Vec3 drift = bodies.xf[b].apply(contact.anchorB) - bodies.xf[a].apply(contact.anchorA);
+    const float k = p.beta * invDt, cap = p.maxPushVelocity;
+    auto pull = [&](float d) {
+      return std::clamp(k * std::copysign(std::max(std::fabs(d) - p.anchorSlop, 0.0f), d), -cap, cap);
+    };
+    anchorBias[0] = pull(drift.dot(t1));
+    anchorBias[1] = pull(drift.dot(t2));
+  }
+  store(cc.frictionBias, anchorBias);
   const F4 tx{t1.x(), t2.x(), 0.0f, 0.0f}, ty{t1.y(), t2.y(), 0.0f, 0.0f}, tz{t1.z(), t2.z(), 0.0f, 0.0f};
   // Angular parts: r × t for the tangent rows, the normal itself for the twist.
   const simd4::I4 twistLane = simd4::I4{0, 1, 2, 3} == 2;
@@ -530,7 +547,7 @@ inline F4 twistConstants(const ContactConstraint& c) {
 // The parts of a sweep, inlined into solveIteration's loop (the exported functions below wrap them
 // for the chain solver): called out of line, large_pyramid's sweeps took 7% longer.
 [[gnu::always_inline]] inline void frictionRows(ContactConstraint& c, F4& va, F4& wa, F4& vb, F4& wb,
-                                                 float omega) {
+                                                 float omega, bool useBias) {
   using simd4::splat;
   // Bounded by the normal impulses of the previous sweep.
   const F4 limit = F4{} + c.friction * simd4::laneSum(load(c.normalImpulse));
@@ -545,7 +562,7 @@ inline F4 twistConstants(const ContactConstraint& c) {
   // Both tangent rows together (lanes 0 and 1), at their velocities after the twist's impulse,
   // clamped to the friction circle |λt| <= μ λn: clamping each axis alone (a box) lets friction
   // reach √2 μ λn and pushes a sliding body sideways.
-  const F4 vt = vf + tc * twistApplied;
+  const F4 vt = vf + tc * twistApplied + (useBias ? load(c.frictionBias) : F4{});
   const F4 m = load(&c.tangentMass[0][0]);  // m00, m01, m10, m11
   const F4 tangent = old - omega * (__builtin_shuffle(m, simd4::I4{0, 2, 0, 2}) * splat<0>(vt) +
                                     __builtin_shuffle(m, simd4::I4{1, 3, 1, 3}) * splat<1>(vt));
@@ -579,9 +596,9 @@ inline F4 twistConstants(const ContactConstraint& c) {
 }  // namespace
 
 // The exported parts of a sweep, on velocities the caller holds as Vec3.
-void solveFrictionRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb, float omega) {
+void solveFrictionRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb, float omega, bool useBias) {
   F4 a = load3(va), b = load3(wa), d = load3(vb), e = load3(wb);
-  frictionRows(c, a, b, d, e, omega);
+  frictionRows(c, a, b, d, e, omega, useBias);
   store3(va, a), store3(wa, b), store3(vb, d), store3(wb, e);
 }
 
@@ -623,7 +640,7 @@ SweepResult sweep(BodyStore& bodies, ContactConstraint* cs, size_t n, float omeg
     F4 va = load3(bodies.v[c.a]), wa = load3(bodies.w[c.a]), vb = load3(bodies.v[c.b]), wb = load3(bodies.w[c.b]);
     // Friction first; normal rows last: non-penetration matters more than friction, so each sweep
     // ends with the normal rows satisfied (see solveNormalBlock).
-    frictionRows(c, va, wa, vb, wb, omega);
+    frictionRows(c, va, wa, vb, wb, omega, useBias);
     residual = std::max(residual, normalRows(c, va, wa, vb, wb, omega, useBias));
     if constexpr (MeasureChange) change += rowsChange(c);
     if (c.dynA) {
@@ -682,6 +699,10 @@ void storeImpulses(const ContactConstraint* cs, size_t n, Contact* contacts) {
     ct.frictionImpulse = c.frictionImpulse[0] * c.tangent1() + c.frictionImpulse[1] * c.tangent2();
     ct.twistImpulse = c.frictionImpulse[2];
     ct.frictionNormal = c.twistAxis();
+    // Friction at its limit slides: the anchor lets go and is set anew where the pair next sticks.
+    const float limit = c.friction * simd4::laneSum(load(c.normalImpulse));
+    const float t1 = c.frictionImpulse[0], t2 = c.frictionImpulse[1];
+    if (t1 * t1 + t2 * t2 >= kAnchorRelease * kAnchorRelease * limit * limit) ct.anchored = false;
   }
 }
 

@@ -200,6 +200,8 @@ void packWide(const ContactConstraint* cs, int lanes, WideContactBatch& w) {
     w.tangentMass11[l] = c.tangentMass[1][1];
     w.twistMass[l] = c.twistMass;
     w.twistRadius[l] = c.twistRadius;
+    w.tangentBias1[l] = c.frictionBias[0];
+    w.tangentBias2[l] = c.frictionBias[1];
     w.tangentImpulse1[l] = c.frictionImpulse[0];
     w.tangentImpulse2[l] = c.frictionImpulse[1];
     w.twistImpulse[l] = c.frictionImpulse[2];
@@ -276,8 +278,12 @@ SweepResult solveWide(BodyStore& bodies, WideContactBatch& w, float omega, bool 
   }
   {
     const V3 dv = vb - va;
-    const F8 vt1 = dot(w.tangent1, dv) + dot(w.rBxt1, wb) - dot(w.rAxt1, wa);
-    const F8 vt2 = dot(w.tangent2, dv) + dot(w.rBxt2, wb) - dot(w.rAxt2, wa);
+    F8 vt1 = dot(w.tangent1, dv) + dot(w.rBxt1, wb) - dot(w.rAxt1, wa);
+    F8 vt2 = dot(w.tangent2, dv) + dot(w.rBxt2, wb) - dot(w.rAxt2, wa);
+    if (useBias) {
+      vt1 += w.tangentBias1;
+      vt2 += w.tangentBias2;
+    }
     const F8 old1 = w.tangentImpulse1, old2 = w.tangentImpulse2;
     F8 n1 = old1 - om * (w.tangentMass00 * vt1 + w.tangentMass01 * vt2);
     F8 n2 = old2 - om * (w.tangentMass10 * vt1 + w.tangentMass11 * vt2);

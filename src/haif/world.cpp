@@ -289,6 +289,31 @@ inline void noteEdge(const Contact& c, ContactEdge& edge) {
   edge.unloaded = unloaded;
 }
 
+// Sets a touching contact's static friction anchor where its points are now, unless it holds one
+// that has drifted less than kAnchorSlip along the contact; a contact without points lets go.
+constexpr float kAnchorSlip = 0.02f;  // m: more is a slide, not a drift to pull back
+inline void updateAnchor(Contact& c, const Transform& xa, const Transform& xb) {
+  const int m = c.manifold.count;
+  if (m == 0) {
+    c.anchored = false;
+    return;
+  }
+  Vec3 centre = Vec3::Zero(), n = Vec3::Zero();
+  for (int i = 0; i < m; ++i) {
+    centre += c.manifold.points[i].position;
+    n += c.manifold.points[i].normal;
+  }
+  centre /= float(m);
+  if (c.anchored) {
+    const Vec3 drift = xb.apply(c.anchorB) - xa.apply(c.anchorA);
+    const float along = n.squaredNorm() > 0.0f ? drift.dot(n) / n.norm() : 0.0f;
+    if (drift.squaredNorm() - along * along <= kAnchorSlip * kAnchorSlip) return;
+  }
+  c.anchorA = xa.applyInverse(centre);
+  c.anchorB = xb.applyInverse(centre);
+  c.anchored = true;
+}
+
 }  // namespace
 
 void World::narrowPhase() {
@@ -324,6 +349,7 @@ void World::narrowPhase() {
       if (settings_.reuseManifolds && rel < restingClosing &&
           refreshManifold(c.cache, xa, xb, reuseLimits, c.manifold)) {
         reusedFlag_[ci] = 1;
+        updateAnchor(c, xa, xb);
         noteEdge(c, edge);
         continue;  // same points and ids: the impulses stay where they are
       }
@@ -357,6 +383,7 @@ void World::narrowPhase() {
         c.twistImpulse = 0.0f;
       }
       if ((old.count > 0) != (c.manifold.count > 0)) wakeFlag_[ci] = 1;
+      updateAnchor(c, xa, xb);
       noteEdge(c, edge);
     }
   });
@@ -399,6 +426,7 @@ SolverParams World::solverParams() const {
   sp.restitutionThreshold = settings_.restitutionThreshold;
   sp.warmStart = settings_.warmStart;
   sp.maxPushVelocity = settings_.maxPushVelocity;
+  sp.frictionAnchors = settings_.frictionAnchors;
   return sp;
 }
 

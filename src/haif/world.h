@@ -38,6 +38,7 @@ struct WorldSettings {
   float contactMargin = 0.02f;      ///< speculative distance (m) beyond which points are not reported
   bool warmStart = true;
   float maxPushVelocity = 0.2f;     ///< cap on the Baumgarte push-out speed (m/s)
+  bool frictionAnchors = true;      ///< friction pulls back the drift of sticking contacts (dynamics/contact_solver.h)
   bool topDownOrder = true;         ///< solve the highest contacts of an island first
   bool accelerate = true;           ///< conjugate-gradient momentum between sweeps (contact_solver.h)
   /// Momentum only for islands at least this many layers of bodies deep (World::supportLayers): it
