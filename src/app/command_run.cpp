@@ -94,6 +94,7 @@ int commandRun(int argc, char** argv) {
   info.threads = threads;
   info.mode = sim.mode;
   info.budgetMs = sim.mode == "fixed" ? 0.0 : budget;
+  info.iMin = world.controller().iMin;
 
   std::vector<StepStats> stats;
   RunMetrics metrics;

@@ -87,6 +87,18 @@ std::string summaryJson(const RunInfo& info, const std::vector<StepStats>& steps
   j["ms_per_step_p95"] = quantile(ms, 0.95);
   j["ms_per_step_p99"] = quantile(ms, 0.99);
   j["deadline_miss_rate"] = info.budgetMs > 0 ? misses / n : 0.0;
+  if (info.budgetMs > 0) {
+    // The floor: what a step costs at the fewest iterations the controller may choose. When its
+    // median does not fit the budget, no choice of the controller can: the budget is infeasible.
+    std::vector<double> floorMs;
+    for (const StepStats& s : steps)
+      if (s.iterationsChosen <= info.iMin) floorMs.push_back(s.totalMs);
+    j["i_min"] = info.iMin;
+    j["floor_steps"] = floorMs.size();
+    if (floorMs.empty()) j["floor_ms_median"] = nullptr;
+    else j["floor_ms_median"] = quantile(floorMs, 0.5);
+    j["budget_feasible"] = floorMs.empty() || quantile(floorMs, 0.5) <= info.budgetMs;
+  }
   j["iterations_mean"] = itSum / n;
   j["iterations_min"] = itMin;
   j["iterations_max"] = itMax;

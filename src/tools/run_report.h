@@ -16,6 +16,7 @@ struct RunInfo {
   int threads = 1;
   std::string mode;
   double budgetMs = 0;
+  int iMin = 0;  ///< the controller's floor on the iteration count (budgeted runs)
   uint64_t stateHash = 0;
   double renderMsPerFrameMedian = -1;  ///< < 0: not rendered
   /// With `haif run --render-phases`: the median ms of each render phase, in render order.

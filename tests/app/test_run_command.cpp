@@ -266,4 +266,24 @@ TEST_F(RunCommand, RenderPhasesAreReportedOnlyWhenAsked) {
   EXPECT_FALSE(fs::exists(dir_ / "headless" / "summary.json"));
 }
 
+TEST_F(RunCommand, BudgetedRunSaysWhetherTheFloorFitsTheBudget) {
+  // At a 1 us budget even I_min cannot fit: every step runs at the floor, and summary.json says the
+  // budget is infeasible, with the floor's measured cost. At 1 s it fits.
+  auto summary = [&](const std::string& budget) {
+    const fs::path out = dir_ / ("b" + budget);
+    const Result r = haif("run '" + kStacks + "' --no-render --frames 10 --mode adaptive --budget-ms " + budget +
+                          " --out '" + out.string() + "'");
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+    std::ifstream sj(out / "summary.json");
+    return nlohmann::json::parse(sj);
+  };
+  const nlohmann::json tight = summary("0.001");
+  EXPECT_EQ(tight.value("budget_feasible", true), false);
+  EXPECT_EQ(tight.value("i_min", 0), 4);
+  EXPECT_EQ(tight.value("floor_steps", 0), 10);
+  EXPECT_GT(tight.value("floor_ms_median", 0.0), 0.001);
+  const nlohmann::json loose = summary("1000");
+  EXPECT_EQ(loose.value("budget_feasible", false), true);
+}
+
 }  // namespace
