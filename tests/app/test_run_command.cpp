@@ -281,6 +281,7 @@ TEST_F(RunCommand, BudgetedRunSaysWhetherTheFloorFitsTheBudget) {
   EXPECT_EQ(tight.value("budget_feasible", true), false);
   EXPECT_EQ(tight.value("i_min", 0), 4);
   EXPECT_EQ(tight.value("floor_steps", 0), 10);
+  EXPECT_EQ(tight.value("floor_misses", 0), 10);
   EXPECT_GT(tight.value("floor_ms_median", 0.0), 0.001);
   const nlohmann::json loose = summary("1000");
   EXPECT_EQ(loose.value("budget_feasible", false), true);
