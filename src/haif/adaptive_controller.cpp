@@ -33,14 +33,26 @@ int AdaptiveController::choose(const ControlContext& ctx) {
   const double crit = criticalRows(ctx);
   const double elapsed = useClock_ ? ctx.elapsedMs : model_.collisionMs(ctx.bodies, ctx.contactPoints);
   const double post = useClock_ && postMs_ >= 0.0 ? postMs_ : model_.msPerBody * 0.5 * ctx.bodies;
-  const double remaining = ctx.budgetMs - elapsed - post - model_.msPerRowPrepare * crit;
+  const double prepare = model_.msPerRowPrepare * crit;
+  // What is left after collision detection, shrunk by how much the rest of recent steps overran
+  // their plans (at the aimed quantile), then what the solve costs besides its sweeps.
+  const double remaining = (ctx.budgetMs - elapsed) / overrunFactor() - post - prepare;
   const double tIter = model_.msPerRowIteration * crit;
   int I = tIter > 0.0 ? static_cast<int>(std::floor(s_.alpha * std::max(0.0, remaining) / tIter)) : iMax;
   // Smooth upward changes only: a step that must do less does so at once, to keep the deadline.
   if (previous_ > 0) I = std::min(I, previous_ + s_.maxStepUp);
   I = std::clamp(I, iMin, iMax);
   previous_ = I;
+  plannedRestMs_ = post + prepare + double(I) * tIter;
   return I;
+}
+
+double AdaptiveController::overrunFactor() const {
+  if (overrunCount_ == 0) return 1.0;
+  std::array<float, kOverrunWindow> sorted = overrun_;
+  const int k = std::min(overrunCount_ - 1, static_cast<int>(s_.aimQuantile * double(overrunCount_)));
+  std::nth_element(sorted.begin(), sorted.begin() + k, sorted.begin() + overrunCount_);
+  return std::clamp(double(sorted[size_t(k)]), 0.25, 8.0);
 }
 
 void AdaptiveController::observe(const ControlContext& ctx, const SolveObservation& obs) {
@@ -50,6 +62,11 @@ void AdaptiveController::observe(const ControlContext& ctx, const SolveObservati
   // average: measured steps replace the (uncalibrated) model at once instead of over ~10 steps.
   if (ctx.step == 0) return;
   ++observed_;
+  if (plannedRestMs_ > 0.0 && ctx.budgetMs > 0.0 && obs.totalMs > 0.0) {
+    overrun_[size_t(overrunNext_)] = float(std::max(0.0, obs.totalMs - ctx.elapsedMs) / plannedRestMs_);
+    overrunNext_ = (overrunNext_ + 1) % kOverrunWindow;
+    overrunCount_ = std::min(overrunCount_ + 1, kOverrunWindow);
+  }
   const double lr = std::max(s_.learnRate, 1.0 / double(observed_));
   postMs_ = postMs_ < 0.0 ? obs.integrateMs : (1.0 - lr) * postMs_ + lr * obs.integrateMs;
   const double crit = criticalRows(ctx);
