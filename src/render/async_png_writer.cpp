@@ -1,5 +1,9 @@
 #include "render/async_png_writer.h"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 
@@ -59,6 +63,9 @@ double AsyncPngWriter::medianWriteMs() {
 }
 
 void AsyncPngWriter::run() {
+  // Writing frames is background work: at the lowest priority it waits for the simulation, whose
+  // step it otherwise preempted (a budgeted step then overran: docs/renderer.md).
+  ::setpriority(PRIO_PROCESS, pid_t(::syscall(SYS_gettid)), 19);
   std::vector<uint8_t> pixels;  // the job being written, outside the lock
   for (;;) {
     Job* job = nullptr;

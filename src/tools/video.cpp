@@ -76,6 +76,9 @@ bool VideoEncoder::open(const std::string& outPath, int width, int height, doubl
   if (pid_ == 0) {
     // -nostdin only stops ffmpeg reading keys; the frames come in on fd 0 as pipe:0.
     ::dup2(fds[0], 0);
+    // Encoding is background work: at the lowest priority it waits for the simulation, whose
+    // budgeted steps it otherwise preempted.
+    if (::nice(19) == -1) { /* still encodes, at normal priority */ }
     ::execvp(argv[0], argv.data());
     ::_exit(127);
   }
