@@ -678,8 +678,9 @@ void World::solveIslands(int iterations) {
 }
 
 // Islands that converged early leave part of the step's work unspent: Σ (I − run) × rows. That
-// budget goes, largest island first, to islands still above the tolerance, each at most doubling
-// its count (a bound that depends only on I, so replaying the counts reproduces the run).
+// budget goes to islands still above the tolerance, the largest residual first (where a sweep
+// buys the most accuracy), each at most doubling its count (a bound that depends only on I, so
+// replaying the counts reproduces the run).
 void World::shareSpareIterations(int iterations) {
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
   uint64_t spare = 0;
@@ -688,9 +689,16 @@ void World::shareSpareIterations(int iterations) {
   islandExtra_.assign(m, 0);
   bool any = false;
   const float tol = settings_.residualTolerance;
-  for (uint32_t k = 0; k < m && spare > 0; ++k) {
+  spareOrder_.clear();
+  for (uint32_t k = 0; k < m; ++k)
+    if (islands_.islands[k].rows > 0 && islandResidual_[k] >= tol) spareOrder_.push_back(k);
+  // Ties broken by index: the order, and so the state, does not depend on the thread count.
+  std::sort(spareOrder_.begin(), spareOrder_.end(), [&](uint32_t x, uint32_t y) {
+    return islandResidual_[x] != islandResidual_[y] ? islandResidual_[x] > islandResidual_[y] : x < y;
+  });
+  for (const uint32_t k : spareOrder_) {
+    if (spare == 0) break;
     const uint32_t rows = islands_.islands[k].rows;
-    if (rows == 0 || islandResidual_[k] < tol) continue;
     const int extra = int(std::min<uint64_t>(uint64_t(iterations), spare / rows));
     if (extra == 0) continue;
     islandExtra_[k] = extra;

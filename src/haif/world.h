@@ -204,6 +204,7 @@ class World {
   std::vector<int> islandIterations_;
   std::vector<float> islandResidual_;
   std::vector<int> islandExtra_;      // spare iterations given to unconverged islands this step
+  std::vector<uint32_t> spareOrder_;  // unconverged islands, largest residual first
   std::vector<uint32_t> batchStart_;  // island batches for parallel solving
   IslandSplitter splitter_;
   std::vector<int32_t> layoutOf_;     // per island: index into layouts_, or -1 when not split
