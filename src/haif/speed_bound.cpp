@@ -12,7 +12,7 @@ void SpeedBound::addBody(const Shape& shape) {
   reach_.push_back(shape.type == ShapeType::Plane || shape.type == ShapeType::TriangleMesh ? 0.0f : half.norm());
 }
 
-void SpeedBound::update(const BodyStore& bodies, const Vec3& gravity, float dt, float waterLift) {
+void SpeedBound::update(const BodyStore& bodies, const Vec3& gravity, float dt, float waterLift, float floor) {
   const uint32_t n = static_cast<uint32_t>(bodies.size());
   const float g = gravity.norm();
   const Vec3 up = g > 0.0f ? Vec3(-gravity / g) : Vec3::UnitY();
@@ -38,7 +38,8 @@ void SpeedBound::update(const BodyStore& bodies, const Vec3& gravity, float dt, 
     }
   }
   forceAllowance_ += pushed;
-  const float fall = std::max(0.0f, highestStart_ - lowest_);
+  const float lowest = std::isfinite(floor) ? std::max(lowest_, floor) : lowest_;
+  const float fall = std::max(0.0f, highestStart_ - lowest);
   const float freeFall = std::sqrt(2.0f * g * (1.0f + waterLift) * fall);
   limit_ = settings.factor > 0.0f
                ? settings.factor * (fastestStart_ + freeFall + 2.0f * kinematic + forceAllowance_) + settings.floor

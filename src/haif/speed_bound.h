@@ -33,7 +33,10 @@ class SpeedBound {
   /// Once per step, before the forces are integrated: new bodies' start speeds and heights, the
   /// fastest kinematic surface, and the user forces about to act. `waterLift`: the densest water over
   /// the lightest body's density (0 without water): buoyancy lifts such a body by g times it.
-  void update(const BodyStore& bodies, const Vec3& gravity, float dt, float waterLift);
+  /// `floor`: the lowest point of the static geometry along up (+inf without any: none): a body that
+  /// fell below it left the scene (through the ground, off its edge) and can strike nothing, so
+  /// the fall term stops there instead of growing with it.
+  void update(const BodyStore& bodies, const Vec3& gravity, float dt, float waterLift, float floor);
   /// Slows every awake dynamic body in [begin, end) whose surface speed is over the bound; returns
   /// how many it slowed. Thread-safe over disjoint ranges.
   uint32_t apply(BodyStore& bodies, uint32_t begin, uint32_t end) const;

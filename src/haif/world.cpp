@@ -11,6 +11,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <algorithm>
 #include <stdexcept>
@@ -96,6 +97,13 @@ uint32_t World::addBody(const BodyDef& def) {
   volume_.push_back(unit.mass);
   bounds_.push_back(computeAabb(def.shape, def.xf));
   speedBound_.addBody(def.shape);
+  if (def.kind == BodyKind::Static && def.shape.type != ShapeType::Plane) {
+    // The static geometry's lowest point along up, for the speed bound (planes are unbounded).
+    const Vec3 up = upDirection(), lo = bounds_[id].lo, hi = bounds_[id].hi;
+    const float low = std::min(up.x() * lo.x(), up.x() * hi.x()) + std::min(up.y() * lo.y(), up.y() * hi.y()) +
+                      std::min(up.z() * lo.z(), up.z() * hi.z());
+    staticFloor_ = std::min(staticFloor_, low);
+  }
   if (def.shape.type == ShapeType::TriangleMesh) hasMesh_ = true;
   islandOfBody_.push_back(-1);
   broadPhase_.addBody(id, bounds_[id], def.kind == BodyKind::Static);
@@ -1004,7 +1012,7 @@ void World::step() {
 
   // 1. External forces (what they may add to any body's speed is noted first: the speed bound).
   speedBound_.settings = settings_.speedBound;
-  speedBound_.update(bodies_, settings_.gravity, dt, waterLift());
+  speedBound_.update(bodies_, settings_.gravity, dt, waterLift(), staticFloor_);
   // A few operations a body: tasks of 8192 bodies, or the step pays more in task overhead than it saves.
   parallelFor(n, 8192, [&](uint32_t b, uint32_t e) { integrateVelocities(bodies_, b, e, settings_.gravity, dt); });
   if (!water_.empty()) {

@@ -22,6 +22,7 @@
 
 #include <tbb/task_arena.h>
 
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -249,6 +250,9 @@ class World {
   void boundSpeeds();
   /// Water density over the lightest dynamic body's density (0 without water), for the speed bound.
   float waterLift() const;
+  /// Lowest point of the static bodies along up (planes excluded; +inf without any: no floor), for
+  /// the speed bound.
+  float staticFloor_ = std::numeric_limits<float>::infinity();
 
   StepStats stats_;
   uint64_t stepCount_ = 0;

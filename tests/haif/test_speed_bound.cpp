@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 using namespace haif;
 using namespace haif::test;
@@ -55,7 +56,7 @@ TEST(SpeedBound, SlowsOnlyBodiesOverTheLimitAlongTheirMotionAndStopsNaN) {
   SpeedBound bound;
   for (int i = 0; i < 3; ++i) bound.addBody(Shape::sphere(1.0f));
   bodies.v[0] = Vec3(1.0f, 0.0f, 0.0f);  // the fastest start: 1 m/s
-  bound.update(bodies, Vec3::Zero(), 1.0f / 60.0f, 0.0f);
+  bound.update(bodies, Vec3::Zero(), 1.0f / 60.0f, 0.0f, std::numeric_limits<float>::infinity());
   const float limit = bound.limit();
   EXPECT_FLOAT_EQ(limit, bound.settings.factor * 1.0f + bound.settings.floor);
   bodies.v[1] = Vec3(0.0f, 3.0f * limit, 0.0f);
@@ -91,4 +92,19 @@ TEST(SpeedBound, CrushedBoxIsNotShotOut) {
     fastest = std::max(fastest, s);
   }
   EXPECT_LE(fastest, 2.0f * (2.0f * 2.0f) + 2.0f + 1e-3f) << "2 x (2 x the slab's speed) + floor";
+}
+
+TEST(SpeedBound, ABodyFallingOutOfTheSceneDoesNotLoosenTheBound) {
+  // A ball dropped beside the ground falls forever. Counted to wherever it is, the fall term grew
+  // without end and loosened the bound for every body (a swept pit lost bodies through its floor and
+  // its bound reached hundreds of m/s); it stops at the lowest static geometry (the ground's bottom).
+  World w;
+  addGround(w);  // top at y = 0, bottom at y = -2
+  addSphere(w, Vec3(600.0f, 5.0f, 0.0f), 0.5f);
+  for (int i = 0; i < 300; ++i) w.step();
+  EXPECT_LT(w.bodies().xf[1].p.y(), -50.0f) << "the ball should have fallen far past the ground";
+  const float reach = 0.5f * std::sqrt(3.0f);
+  const float fall = 5.0f + reach + 2.0f;  // from its top at the start to the ground's bottom
+  const SpeedBoundSettings s;
+  EXPECT_NEAR(w.speedLimit(), s.factor * std::sqrt(2.0f * 9.81f * fall) + s.floor, 0.01f);
 }
