@@ -1,5 +1,6 @@
 #include "scene/scene_validate.h"
 
+#include "collision/shape.h"
 #include "scene/json_reader.h"
 
 #include <algorithm>
@@ -67,15 +68,14 @@ float shapeExtent(const ShapeDesc& s) {
 float bodyMass(const SceneDesc& scene, const BodyDesc& b) {
   if (b.mass > 0.0f) return b.mass;
   const ShapeDesc& s = b.shape;
-  const double r = s.radius, pi = 3.14159265358979323846;
-  double volume = 0.0;
+  const float density = scene.materials[b.material].density;
+  // The engine's own mass properties (collision/shape.h), so the check sees the mass it will use.
   switch (s.type) {
-    case ShapeType::Sphere: volume = 4.0 / 3.0 * pi * r * r * r; break;
-    case ShapeType::Box: volume = 8.0 * double(s.halfExtents.x()) * s.halfExtents.y() * s.halfExtents.z(); break;
-    case ShapeType::Capsule: volume = pi * r * r * (2.0 * s.halfHeight + 4.0 / 3.0 * r); break;
+    case ShapeType::Sphere: return computeMassProperties(Shape::sphere(s.radius), density).mass;
+    case ShapeType::Box: return computeMassProperties(Shape::box(s.halfExtents), density).mass;
+    case ShapeType::Capsule: return computeMassProperties(Shape::capsule(s.radius, s.halfHeight), density).mass;
     default: return 0.0f;
   }
-  return float(volume * scene.materials[b.material].density);
 }
 
 namespace {
