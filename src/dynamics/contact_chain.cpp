@@ -224,8 +224,10 @@ bool prepareChain(const Contact* contacts, const ContactConstraint* cs, uint32_t
       mark[body] = 2 * j + 1;
     }
   }
+  // A body pinched between two immovable ones (haif/pinch.h) is a chain whose block is singular:
+  // its two rows push the same direction from both ends. It is swept, not solved exactly.
   for (uint32_t j = 0; j < n; ++j)
-    if (!prepareLink(contacts[cs[j].contact], cs[j], links[j])) return false;
+    if (contacts[cs[j].contact].pinched || !prepareLink(contacts[cs[j].contact], cs[j], links[j])) return false;
   for (uint32_t j = 0; j + 1 < n; ++j)
     if (links[j].coupledToNext()) coupleLinks(cs[j], cs[j + 1], links[j], links[j + 1]);
   return true;

@@ -292,10 +292,12 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   const F4 speculative = depth < 0.0f ? depth * invDt : F4{};  // approach by the gap, no faster
   const F4 excess = simd4::clampNonNegative(depth - p.slop) * (p.beta * invDt);
   const F4 push = excess < p.maxPushVelocity ? excess : F4{} + p.maxPushVelocity;
-  store(cc.bias, depth < 0.0f ? -speculative : -push);
+  // A pinched body's push-outs oppose each other and cannot all be met; their impulses would grow
+  // sweep after sweep and, warm started, step after step, until the body left at any speed.
+  store(cc.bias, depth < 0.0f ? -speculative : (contact.pinched ? F4{} : -push));
   store(cc.restitutionBias,
         contact.restitution > 0.0f ? (vn < -p.restitutionThreshold ? contact.restitution * vn : F4{}) : F4{});
-  store(cc.normalImpulse, p.warmStart ? warm : F4{});
+  store(cc.normalImpulse, p.warmStart && !contact.pinched ? warm : F4{});
 
   for (int r = 0; r <= ContactConstraint::kRows; ++r) cc.delta[r] = cc.direction[r] = 0.0f;
   cc.blockExact = false;
@@ -376,7 +378,7 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   cc.twistRadius = radius * invCount;
   cc.blockExact = prepareBlockInverse(s, t, cc);
 
-  if (p.warmStart) {
+  if (p.warmStart && !contact.pinched) {
     cc.frictionImpulse[0] = contact.frictionImpulse.dot(t1);
     cc.frictionImpulse[1] = contact.frictionImpulse.dot(t2);
     cc.frictionImpulse[2] = contact.twistImpulse * std::max(0.0f, contact.frictionNormal.dot(n));
@@ -694,6 +696,13 @@ void storeImpulses(const ContactConstraint* cs, size_t n, Contact* contacts) {
   for (size_t k = 0; k < n; ++k) {
     const ContactConstraint& c = cs[k];
     Contact& ct = contacts[c.contact];
+    // A pinch's impulses are the conflict's, not a load: none is carried into the next step.
+    if (ct.pinched) {
+      for (int i = 0; i < c.count; ++i) ct.normalImpulse[i] = 0.0f;
+      ct.frictionImpulse.setZero();
+      ct.twistImpulse = 0.0f;
+      continue;
+    }
     for (int i = 0; i < c.count; ++i) ct.normalImpulse[i] = c.normalImpulse[i];
     if (c.count == 0) continue;
     ct.frictionImpulse = c.frictionImpulse[0] * c.tangent1() + c.frictionImpulse[1] * c.tangent2();

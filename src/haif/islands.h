@@ -24,6 +24,8 @@ struct ContactEdge {
   uint32_t a = 0, b = 0;  ///< body ids
   uint32_t count = 0;     ///< manifold points (0: not touching)
   bool unloaded = true;   ///< every point's normal impulse is zero (nothing to warm start from)
+  /// Overlapping, between an awake dynamic body and a static or kinematic one (haif/pinch.h).
+  bool pressedByImmovable = false;
 };
 
 struct IslandSet {

@@ -36,6 +36,7 @@ struct StepStats {
   uint32_t stages = 0;            ///< StageBits
   float jointErrorM = 0;          ///< largest joint anchor error after the step (m); 0 without joints
   float jointErrorRad = 0;        ///< largest joint angular error after the step (rad)
+  uint32_t pinchedBodies = 0;     ///< dynamic bodies pressed from opposite sides by static or kinematic ones (haif/pinch.h)
   uint32_t speedLimited = 0;      ///< times a body was slowed to the speed bound this step (haif/speed_bound.h)
 };
 

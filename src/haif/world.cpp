@@ -290,8 +290,9 @@ void World::updateBroadPhase() {
 namespace {
 
 // What the stages after the narrow phase need of a contact, copied while it is in cache.
-inline void noteEdge(const Contact& c, ContactEdge& edge) {
+inline void noteEdge(const Contact& c, ContactEdge& edge, bool againstImmovable) {
   edge.count = uint32_t(c.manifold.count);
+  edge.pressedByImmovable = againstImmovable && c.manifold.deepest() > 0.0f;
   bool unloaded = true;
   for (int i = 0; i < c.manifold.count; ++i) unloaded &= c.normalImpulse[i] == 0.0f;
   edge.unloaded = unloaded;
@@ -339,13 +340,17 @@ void World::narrowPhase() {
     for (uint32_t ci = begin; ci < end; ++ci) {
       Contact& c = contacts_[ci];
       wakeFlag_[ci] = 0;
+      c.pinched = false;  // PinchDetector::mark sets it again
       ContactEdge& edge = contactEdges_[ci];
       edge.a = c.a;
       edge.b = c.b;
       if (!active(c.a) && !active(c.b)) {  // sleeping or static on both sides: keep the manifold
-        noteEdge(c, edge);
+        noteEdge(c, edge, false);
         continue;
       }
+      // One side solved, the other static or kinematic: what pinches are made of (haif/pinch.h).
+      const bool solvedA = bodies_.isAwakeDynamic(c.a), solvedB = bodies_.isAwakeDynamic(c.b);
+      const bool againstImmovable = solvedA != solvedB && !bodies_.isDynamic(solvedA ? c.b : c.a);
       const Transform &xa = bodies_.xf[c.a], &xb = bodies_.xf[c.b];
       // Speculative margin: as far as the pair closes in one step, uncapped, so a small fast body meets a
       // thin wall the step before it would pass it (a 1 m cap let 5 cm bodies through above 60 m/s). It
@@ -358,7 +363,7 @@ void World::narrowPhase() {
           refreshManifold(c.cache, xa, xb, reuseLimits, c.manifold)) {
         reusedFlag_[ci] = 1;
         updateAnchor(c, xa, xb);
-        noteEdge(c, edge);
+        noteEdge(c, edge, againstImmovable);
         continue;  // same points and ids: the impulses stay where they are
       }
       const Manifold old = c.manifold;
@@ -392,7 +397,7 @@ void World::narrowPhase() {
       }
       if ((old.count > 0) != (c.manifold.count > 0)) wakeFlag_[ci] = 1;
       updateAnchor(c, xa, xb);
-      noteEdge(c, edge);
+      noteEdge(c, edge, againstImmovable);
     }
   });
 
@@ -858,7 +863,13 @@ void World::orderContactsTopDown() {
   parallelFor(uint32_t(islands_.contacts.size()), 4096, [&](uint32_t begin, uint32_t end) {
     for (uint32_t j = begin; j < end; ++j) {
       const ContactEdge& c = contactEdges_[ids[j]];
-      const float h = up.dot(bodies_.xf[c.a].p + bodies_.xf[c.b].p);
+      float h = up.dot(bodies_.xf[c.a].p + bodies_.xf[c.b].p);
+      // A pinched body's static contacts come last, its kinematic ones first: the sweep's last word
+      // keeps it out of the static world, and the kinematic body passes it (haif/pinch.h).
+      if (pinchedBodies_ > 0 && contacts_[ids[j]].pinched) {
+        const bool kinematic = bodies_.kind[c.a] == BodyKind::Kinematic || bodies_.kind[c.b] == BodyKind::Kinematic;
+        h = kinematic ? std::numeric_limits<float>::max() : std::numeric_limits<float>::lowest();
+      }
       contactHeight_[ids[j]] = h;
       orderKeys_[j] = descendingKey(h, ids[j]);  // top down; ties by index: deterministic
     }
@@ -1023,6 +1034,8 @@ void World::step() {
   // 2-3. Collision detection.
   updateBroadPhase();
   narrowPhase();
+  pinchedBodies_ = settings_.resolvePinches ? pinch_.mark(bodies_, contactEdges_.data(), contacts_) : 0;
+  stats_.pinchedBodies = pinchedBodies_;
   if (hasMesh_) stats_.stages |= kStageMeshTests;
   stats_.collisionMs = msSince(t0);
 

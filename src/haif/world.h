@@ -15,6 +15,7 @@
 #include "dynamics/joint_tree.h"
 #include "haif/island_split.h"
 #include "haif/islands.h"
+#include "haif/pinch.h"
 #include "haif/iteration_controller.h"
 #include "haif/lane_batches.h"
 #include "haif/speed_bound.h"
@@ -54,6 +55,9 @@ struct WorldSettings {
   bool reuseManifolds = true;       ///< keep a pair's manifold while its bodies keep still (manifold_cache.h)
   JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)
   SpeedBoundSettings speedBound;    ///< the bound on every body's speed (haif/speed_bound.h)
+  /// Bodies pressed from opposite sides by static or kinematic ones get no push-out and carry no
+  /// impulse between steps, and their static contacts are solved last (haif/pinch.h).
+  bool resolvePinches = true;
   bool sleeping = false;
   float timeToSleep = 0.5f;         ///< s an island must rest before it sleeps
   float sleepLinear = 0.05f;        ///< m/s
@@ -190,6 +194,8 @@ class World {
   std::vector<uint8_t> wakeFlag_;     // per contact: touching state changed this step
   std::vector<uint8_t> reusedFlag_;   // per contact: its manifold was reused this step
   std::vector<ContactEdge> contactEdges_;  // per contact: its bodies and point count, from the narrow phase on
+  PinchDetector pinch_;               // marks contacts of bodies pressed between immovable ones
+  uint32_t pinchedBodies_ = 0;        // this step's, from pinch_
 
   IslandBuilder islandBuilder_;
   IslandSet islands_;

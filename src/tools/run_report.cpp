@@ -30,19 +30,20 @@ std::string statsCsv(const std::vector<StepStats>& steps) {
       "step,collision_ms,solve_ms,integrate_ms,total_ms,budget_ms,deadline_miss,iterations_chosen,"
       "iterations_min,iterations_mean,iterations_max,row_iterations,residual,solve_error,islands,"
       "largest_island,awake_bodies,sleeping_bodies,contacts,contact_points,new_pairs,stages,joint_error_m,"
-      "joint_error_rad,speed_limited\n";
+      "joint_error_rad,speed_limited,pinched\n";
   char line[512];
   for (const StepStats& s : steps) {
     char err[32];
     if (std::isnan(s.solveError)) err[0] = '\0';
     else std::snprintf(err, sizeof err, "%.6g", s.solveError);
     std::snprintf(line, sizeof line,
-                  "%llu,%.4f,%.4f,%.4f,%.4f,%.3f,%d,%d,%d,%.3f,%d,%llu,%.6g,%s,%u,%u,%u,%u,%u,%u,%u,%s,%.6g,%.6g,%u\n",
+                  "%llu,%.4f,%.4f,%.4f,%.4f,%.3f,%d,%d,%d,%.3f,%d,%llu,%.6g,%s,%u,%u,%u,%u,%u,%u,%u,%s,%.6g,%.6g,%u,%u\n",
                   (unsigned long long)s.step, s.collisionMs, s.solveMs, s.integrateMs, s.totalMs, s.budgetMs,
                   s.deadlineMiss ? 1 : 0, s.iterationsChosen, s.iterationsMin, s.iterationsMean, s.iterationsMax,
                   (unsigned long long)s.rowIterations, double(s.residual), err, s.islands, s.largestIsland,
                   s.awakeBodies, s.sleepingBodies, s.contacts, s.contactPoints, s.newPairs,
-                  stageNames(s.stages).c_str(), double(s.jointErrorM), double(s.jointErrorRad), s.speedLimited);
+                  stageNames(s.stages).c_str(), double(s.jointErrorM), double(s.jointErrorRad), s.speedLimited,
+                  s.pinchedBodies);
     out += line;
   }
   return out;
@@ -60,12 +61,15 @@ std::string summaryJson(const RunInfo& info, const std::vector<StepStats>& steps
   std::vector<double> ms;
   ms.reserve(steps.size());
   double misses = 0, itSum = 0, errSum = 0;
-  uint64_t limited = 0, limitedSteps = 0;
+  uint64_t limited = 0, limitedSteps = 0, pinchedSteps = 0;
+  uint32_t pinchedMax = 0;
   int itMin = steps.empty() ? 0 : 1 << 30, itMax = 0, errCount = 0;
   for (const StepStats& s : steps) {
     ms.push_back(s.totalMs);
     limited += s.speedLimited;
     limitedSteps += s.speedLimited > 0 ? 1 : 0;
+    pinchedSteps += s.pinchedBodies > 0 ? 1 : 0;
+    pinchedMax = std::max(pinchedMax, s.pinchedBodies);
     misses += s.deadlineMiss ? 1 : 0;
     itSum += s.iterationsChosen;
     itMin = std::min(itMin, s.iterationsChosen);
@@ -128,6 +132,8 @@ std::string summaryJson(const RunInfo& info, const std::vector<StepStats>& steps
   j["nan_detected"] = m.nanDetected();
   j["speed_limited"] = limited;
   j["speed_limited_steps"] = limitedSteps;
+  j["pinched_steps"] = pinchedSteps;
+  j["pinched_max"] = pinchedMax;
   char hash[32];
   std::snprintf(hash, sizeof hash, "%016llx", (unsigned long long)info.stateHash);
   j["state_hash"] = hash;
