@@ -18,6 +18,12 @@
 
 namespace haif {
 
+#ifdef HAIF_TSAN
+constexpr bool kTsan = true;
+#else
+constexpr bool kTsan = false;
+#endif
+
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -55,11 +61,18 @@ void World::setThreads(int threads) {
   settings_.threads = std::max(1, threads);
   // The arena's worker threads are created once and reused by every step.
   arena_ = settings_.threads > 1 ? std::make_unique<tbb::task_arena>(settings_.threads) : nullptr;
+#ifdef HAIF_TSAN
+  pool_ = settings_.threads > 1 ? std::make_unique<TsanPool>(settings_.threads) : nullptr;
+#endif
   phaseClocks_.assign(size_t(settings_.threads), PhaseClock{});
 }
 
 World::PhaseClock& World::phaseClock() {
+#ifdef HAIF_TSAN
+  const int slot = TsanPool::threadIndex();
+#else
   const int slot = arena_ ? tbb::this_task_arena::current_thread_index() : 0;
+#endif
   return phaseClocks_[slot >= 0 && size_t(slot) < phaseClocks_.size() ? size_t(slot) : 0];
 }
 
@@ -71,10 +84,14 @@ void World::parallelFor(uint32_t n, uint32_t grain, F&& f) {
     if (n > 0) f(0u, n);
     return;
   }
+#ifdef HAIF_TSAN
+  pool_->run(n, grain, [&](uint32_t b, uint32_t e) { f(b, e); });
+#else
   arena_->execute([&] {
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, grain),
                       [&](const tbb::blocked_range<uint32_t>& r) { f(r.begin(), r.end()); });
   });
+#endif
 }
 
 uint32_t World::addBody(const BodyDef& def) {
@@ -880,7 +897,9 @@ void World::orderContactsTopDown() {
     for (uint32_t k = begin; k < end; ++k) {
       const Island& isl = islands_.islands[k];
       uint64_t* first = orderKeys_.data() + isl.firstContact;
-      if (arena_ && isl.contactCount >= kParallelSortContacts)
+      // Keys are unique (they hold the index): any sort gives the same order. Under TSan the sort
+      // stays serial, as TBB's hand-offs are invisible to it (haif/tsan_pool.h).
+      if (arena_ && isl.contactCount >= kParallelSortContacts && !kTsan)
         arena_->execute([&] { tbb::parallel_sort(first, first + isl.contactCount); });
       else
         std::sort(first, first + isl.contactCount);

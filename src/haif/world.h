@@ -20,6 +20,7 @@
 #include "haif/lane_batches.h"
 #include "haif/speed_bound.h"
 #include "haif/step_stats.h"
+#include "haif/tsan_pool.h"
 
 #include <tbb/task_arena.h>
 
@@ -239,6 +240,9 @@ class World {
 
   std::unique_ptr<IterationController> controller_;
   std::unique_ptr<tbb::task_arena> arena_;
+#ifdef HAIF_TSAN
+  std::unique_ptr<TsanPool> pool_;  // stands in for arena_ under ThreadSanitizer (haif/tsan_pool.h)
+#endif
   // Thread time of the solve's once-per-step work (rows built, warm started, stored) and of its
   // sweeps, per worker slot; the controller splits the measured solve time by their ratio.
   struct alignas(64) PhaseClock {
