@@ -1,0 +1,191 @@
+// Closed-form laws of rigid-body mechanics, each against its formula with the tolerance said at the
+// test (issue 30): a pendulum's period, an elastic head-on collision, rolling down an incline, and a
+// box carried by a kinematic platform.
+#include "dynamics/joint_test_util.h"
+#include "support/physics_test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+using namespace haif;
+using namespace haif::test;
+
+namespace {
+
+// The exact period of a sphere (radius r = 0.05 m) swinging on a ball joint at L = 1 m from its
+// centre, a physical pendulum: T0 = 2π √(I / (m g L)), I = m L² + 2/5 m r², times the
+// large-amplitude series 1 + θ²/16 + 11 θ⁴/3072 (its next term is 3e-4 at 60°).
+double expectedPeriod(double amplitude) {
+  const double L = 1.0, r = 0.05, g = 9.81;
+  const double t0 = 2.0 * M_PI * std::sqrt((L * L + 0.4 * r * r) / (g * L));
+  const double a2 = amplitude * amplitude;
+  return t0 * (1.0 + a2 / 16.0 + 11.0 * a2 * a2 / 3072.0);
+}
+
+struct Swing {
+  double period;     // s, between two upward zero crossings (interpolated within the step)
+  double amplitude;  // rad, the mean of the largest angles on either side within it
+  double energy;     // J, kinetic + potential at its end
+};
+
+// Let go at theta0 from the vertical; returns each full swing of 20 s.
+std::vector<Swing> swings(float theta0, int iterations, double* startEnergy) {
+  WorldSettings ws;
+  ws.iterations = iterations;
+  World w(ws);
+  const float L = 1.0f;
+  const Vec3 pivot(0.0f, 5.0f, 0.0f);
+  BodyDef d;
+  d.shape = Shape::sphere(0.05f);
+  d.mass = 1.0f;
+  d.xf.p = pivot + L * Vec3(std::sin(theta0), -std::cos(theta0), 0.0f);
+  const uint32_t bob = w.addBody(d);
+  addJointAt(w, JointType::Ball, kWorldBody, bob, pivot);
+  *startEnergy = w.kineticEnergy() + w.potentialEnergy();
+  std::vector<Swing> out;
+  double lastCrossing = -1.0, right = 0.0, left = 0.0;
+  float last = w.bodies().xf[bob].p.x();
+  for (int s = 1; s <= 1200; ++s) {
+    w.step();
+    const Vec3 arm = w.bodies().xf[bob].p - pivot;
+    const double angle = std::atan2(double(arm.x()), double(-arm.y()));
+    right = std::max(right, angle);
+    left = std::max(left, -angle);
+    const float x = arm.x();
+    if (last < 0.0f && x >= 0.0f) {
+      const double t = (s - 1 + double(-last) / double(x - last)) * ws.dt;
+      if (lastCrossing >= 0.0)
+        out.push_back({t - lastCrossing, 0.5 * (right + left), w.kineticEnergy() + w.potentialEnergy()});
+      lastCrossing = t;
+      right = left = 0.0;
+    }
+    last = x;
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(AnalyticLaws, PendulumPeriodFollowsItsAmplitude) {
+  // Each swing's period against the closed form at that swing's amplitude, within 1 %: the step's
+  // own error (symplectic Euler, ω dt = 0.05) is ~0.01 %, and at 60° the period is 7 % longer than
+  // at small angles, so a solver that lost the amplitude dependence would fail by far.
+  for (const int iterations : {10, 4}) {
+    for (const float degrees : {10.0f, 60.0f}) {
+      double e0 = 0.0;
+      const std::vector<Swing> sw = swings(degrees * kPi / 180.0f, iterations, &e0);
+      ASSERT_GE(sw.size(), 8u);
+      for (size_t k = 0; k < sw.size(); ++k)
+        EXPECT_NEAR(sw[k].period / expectedPeriod(sw[k].amplitude), 1.0, 0.01)
+            << degrees << "°, " << iterations << " iterations, swing " << k << ": " << sw[k].period << " s at "
+            << sw[k].amplitude * 180.0 / M_PI << "°";
+    }
+  }
+}
+
+TEST(AnalyticLaws, PendulumLosesAtMostItsKnownShareOfEnergyASwing) {
+  // A known limit, bounded so it cannot grow unseen: the joint keeps the velocity tangent to where
+  // the bob is at the start of each step, so each step turns it by dθ = v dt / L and keeps cos dθ of
+  // it, a loss of about (v dt / L)² a step (docs/solver.md, "Known limits"): at 60° 9.2 % of a
+  // swing's energy (measured above the lowest point) a swing, at 10° 0.3 %. Bounded a little above.
+  for (const float degrees : {10.0f, 60.0f}) {
+    double e0 = 0.0;
+    const std::vector<Swing> sw = swings(degrees * kPi / 180.0f, 10, &e0);
+    ASSERT_GE(sw.size(), 2u);
+    const double swingEnergy = 9.81 * (1.0 - std::cos(degrees * kPi / 180.0));  // m g L (1 − cos θ0)
+    const double bottom = e0 - swingEnergy;
+    const double kept = (sw[1].energy - bottom) / (sw[0].energy - bottom);  // over one full swing
+    const double allowedLoss = degrees > 30.0f ? 0.11 : 0.005;
+    EXPECT_GT(kept, 1.0 - allowedLoss) << degrees << "°: a swing kept " << kept * 100.0 << " %";
+    EXPECT_LT(kept, 1.0) << degrees << "°: a swing may not gain energy";
+  }
+}
+
+TEST(AnalyticLaws, EqualSpheresSwapVelocitiesInAnElasticHeadOnCollision) {
+  // e = 1, no friction, no gravity: all of A's momentum and energy pass to B. Within 1 % of the
+  // speed (momentum is exchanged by the restitution row in the relax sweeps, from the approach speed).
+  for (const int iterations : {10, 4}) {
+    WorldSettings ws;
+    ws.gravity = Vec3::Zero();
+    ws.iterations = iterations;
+    World w(ws);
+    auto ball = [&](float x, float v) {
+      BodyDef d;
+      d.shape = Shape::sphere(0.5f);
+      d.mass = 1.0f;
+      d.restitution = 1.0f;
+      d.friction = 0.0f;
+      d.xf.p = Vec3(x, 0.0f, 0.0f);
+      d.linearVelocity = Vec3(v, 0.0f, 0.0f);
+      return w.addBody(d);
+    };
+    const uint32_t a = ball(-2.0f, 3.0f), b = ball(0.0f, 0.0f);
+    for (int s = 0; s < 60; ++s) w.step();
+    const Vec3 va = w.bodies().v[a], vb = w.bodies().v[b];
+    EXPECT_NEAR(va.x(), 0.0f, 0.03f) << iterations << " iterations";
+    EXPECT_NEAR(vb.x(), 3.0f, 0.03f) << iterations << " iterations";
+    EXPECT_NEAR(va.x() + vb.x(), 3.0f, 0.015f) << "momentum, " << iterations << " iterations";
+  }
+}
+
+TEST(AnalyticLaws, SphereRollsDownAnInclineAtFiveSeventhsOfGSinTheta) {
+  // A solid sphere rolling without slipping: a = 5/7 g sin θ (μ = 0.6 is far above the 2/7 tan θ it
+  // needs), so it covers s = ½ a t² in t. Within 2 %, from 0.2 s on (after it has settled on the slope).
+  const float theta = 20.0f * kPi / 180.0f;
+  for (const int iterations : {10, 4}) {
+    WorldSettings ws;
+    ws.iterations = iterations;
+    World w(ws);
+    const Quat tilt(Eigen::AngleAxisf(theta, Vec3::UnitZ()));  // downhill towards -x
+    BodyDef slope;
+    slope.kind = BodyKind::Static;
+    slope.shape = Shape::box(Vec3(20.0f, 0.5f, 2.0f));
+    slope.xf.q = tilt;
+    w.addBody(slope);
+    const Vec3 n = tilt * Vec3::UnitY(), down = tilt * Vec3(-1.0f, 0.0f, 0.0f);
+    BodyDef d;
+    d.shape = Shape::sphere(0.3f);
+    d.mass = 1.0f;
+    d.friction = 0.6f;
+    d.xf.p = (0.5f + 0.3f) * n + 5.0f * (-down);
+    const uint32_t ball = w.addBody(d);
+    for (int s = 0; s < 12; ++s) w.step();
+    const float s0 = w.bodies().xf[ball].p.dot(down), v0 = w.bodies().v[ball].dot(down);
+    const int steps = 48;  // 0.8 s more
+    for (int s = 0; s < steps; ++s) w.step();
+    const double t = steps * double(ws.dt), a = 5.0 / 7.0 * 9.81 * std::sin(double(theta));
+    const double expect = v0 * t + 0.5 * a * t * t;
+    const double got = w.bodies().xf[ball].p.dot(down) - s0;
+    EXPECT_NEAR(got / expect, 1.0, 0.02) << iterations << " iterations: " << got << " m against " << expect << " m";
+    const double vExpect = v0 + a * t;
+    EXPECT_NEAR(w.bodies().v[ball].dot(down) / vExpect, 1.0, 0.02) << iterations << " iterations";
+    // Rolling, not sliding: the contact point is at rest, ω r = v.
+    EXPECT_NEAR(w.bodies().w[ball].norm() * 0.3f / w.bodies().v[ball].norm(), 1.0, 0.02) << iterations << " iterations";
+  }
+}
+
+TEST(AnalyticLaws, KinematicPlatformCarriesABoxWithoutSlip) {
+  // A kinematic platform sliding at 1 m/s under a box: static friction (μ 0.6 ≫ the 0 it needs at
+  // constant speed) carries the box along. After 2 s it has moved with the platform within 1 cm.
+  for (const int iterations : {10, 4}) {
+    WorldSettings ws;
+    ws.iterations = iterations;
+    World w(ws);
+    addGround(w);
+    BodyDef p;
+    p.kind = BodyKind::Kinematic;
+    p.shape = Shape::box(Vec3(3.0f, 0.1f, 3.0f));
+    p.xf.p = Vec3(0.0f, 0.5f, 0.0f);
+    p.linearVelocity = Vec3(1.0f, 0.0f, 0.0f);
+    const uint32_t platform = w.addBody(p);
+    const uint32_t box = addBox(w, Vec3(0.0f, 0.85f, 0.0f), Vec3::Constant(0.25f));
+    for (int s = 0; s < 30; ++s) w.step();  // settles and takes up the platform's speed
+    const Vec3 start = w.bodies().xf[box].p - w.bodies().xf[platform].p;
+    for (int s = 0; s < 120; ++s) w.step();
+    const Vec3 offset = w.bodies().xf[box].p - w.bodies().xf[platform].p;
+    EXPECT_LT((offset - start).norm(), 0.01f) << iterations << " iterations";
+    EXPECT_NEAR(w.bodies().v[box].x(), 1.0f, 0.01f) << iterations << " iterations";
+  }
+}
