@@ -146,6 +146,31 @@ TEST(AdaptiveController, ModelModeIgnoresTheClock) {
   EXPECT_EQ(a.iterationMs(c), before);
 }
 
+TEST(AdaptiveController, PlansWithTheIntegrationTimeItMeasured) {
+  // After steps whose integration took 2 ms, the time left for sweeps is the budget less 2 ms, not
+  // less the model's guess: the count is exactly the formula's with the measured time. (Ignoring the
+  // measurement moved the choice by one iteration, which a tolerance of 1 let through.)
+  CostModel m;
+  AdaptiveSettings s;
+  AdaptiveController ac(m, s, true);
+  const ControlContext c = context(4.0, 0.5, 3000, 300, 1, 100);
+  ac.choose(c);
+  SolveObservation obs;  // no solve time and no step total: only the integration time is learned
+  obs.integrateMs = 2.0;
+  ControlContext later = c;
+  for (int k = 1; k <= 5; ++k) {
+    later.step = uint64_t(k);
+    ac.observe(later, obs);
+  }
+  const double crit = CostModel::criticalRows(c.totalRows, c.largestRows, c.threads, m.parallelEfficiency);
+  const double remaining = c.budgetMs - c.elapsedMs - 2.0 - m.msPerRowPrepare * crit;
+  const int expected = int(std::floor(s.alpha * remaining / (m.msPerRowIteration * crit)));
+  ASSERT_GT(expected, ac.iMin);
+  ASSERT_LT(expected, ac.iMax);
+  ASSERT_LT(expected, expectedUnclamped(m, s, c) - 1) << "the model's guess must differ, or this tests nothing";
+  EXPECT_EQ(ac.choose(c), expected);
+}
+
 TEST(AdaptiveController, LearnsFromSlowSolves) {
   // A measured solve far slower than the model raises the per-row estimate, lowering later counts.
   CostModel m;

@@ -100,6 +100,25 @@ TEST(CompareImages, ThresholdDecidesWhatCountsAsDifferent) {
   EXPECT_EQ(compareImages(a, b, strict).differentPixels, 64 * 64);
 }
 
+TEST(CompareImages, APixelCountsOnlyWhenItExceedsTheThreshold) {
+  // Boundary values (the README: a pixel differs when its distance *exceeds* the threshold): at
+  // threshold 0 identical images have no different pixel, and a pixel exactly at the threshold is
+  // not counted. Counting at >= instead made every pixel of two identical images differ.
+  const Image a = texturedImage(32, 32);
+  DiffOptions exact;
+  exact.threshold = 0.0;
+  exact.detectAntialiasing = false;
+  EXPECT_EQ(compareImages(a, a, exact).differentPixels, 0);
+  Image b = a;
+  b.at(5, 7)[0] = uint8_t(b.at(5, 7)[0] + 40);
+  DiffOptions at = exact;
+  at.threshold = colourDistance(a.at(5, 7), b.at(5, 7));
+  EXPECT_EQ(compareImages(a, b, at).differentPixels, 0);
+  DiffOptions below = exact;
+  below.threshold = at.threshold * 0.999;
+  EXPECT_EQ(compareImages(a, b, below).differentPixels, 1);
+}
+
 TEST(CompareImages, AntialiasedEdgeIsForgivenButCountsWithoutTolerance) {
   // A black square on white; the new image has a grey column beside its right edge, as an
   // anti-aliased rasteriser would draw a half-covered pixel column.
