@@ -120,14 +120,18 @@ TEST_F(BenchCommand, TinySweepWritesResultsReportAndPlot) {
     EXPECT_GT(num(row, "cpu_ms_per_step_median"), 0.0);
     EXPECT_EQ(col(row, "nan_detected"), "0");
     EXPECT_EQ(col(row, "state_hash").size(), 16u);
-    // Penetration and drop from the engine's own contacts and positions: a standing stack stays
-    // standing (drops are the 1 cm gaps closing, plus the solver's give).
+    // Penetration and drop from the engine's own contacts and positions: ten stacks of ten boxes
+    // built with 1 cm gaps stay standing, so a top box drops by its nine gaps closing (0.09 m) plus
+    // the solver's give. HAIF keeps contacts within its 5 mm slop (chains are solved exactly);
+    // Bullet, measured at 0.06 m and 0.22 m, gets looser bounds that still mean "standing".
+    const bool bullet = col(row, "engine") == "bullet";
     EXPECT_GE(num(row, "max_penetration_m"), num(row, "rms_penetration_m"));
     EXPECT_GE(num(row, "rms_penetration_m"), 0.0);
-    EXPECT_LT(num(row, "max_penetration_m"), 0.5);
+    EXPECT_LT(num(row, "max_penetration_m"), bullet ? 0.1 : 0.006);
     EXPECT_GT(num(row, "mean_drop_m"), 0.0);
     EXPECT_LE(num(row, "mean_drop_m"), num(row, "max_drop_m"));
-    EXPECT_LT(num(row, "max_drop_m"), 1.5);
+    EXPECT_GE(num(row, "max_drop_m"), 0.09 - 1e-3) << "the gaps close";
+    EXPECT_LT(num(row, "max_drop_m"), bullet ? 0.3 : 0.1);
     EXPECT_GE(num(row, "jitter_rms_velocity_m_s"), 0.0);
     if (col(row, "mode") == "fixed") {
       EXPECT_EQ(num(row, "iterations_mean"), num(row, "param"));
@@ -136,8 +140,9 @@ TEST_F(BenchCommand, TinySweepWritesResultsReportAndPlot) {
       EXPECT_EQ(col(row, "solve_error_mean"), "n/a") << "Bullet's solve error cannot be measured";
       EXPECT_EQ(num(row, "threads"), 1);
     } else {
+      // Solve error is a relative residual in [0, 1]; chains of boxes are solved exactly.
       EXPECT_GE(num(row, "solve_error_mean"), 0.0);
-      EXPECT_LT(num(row, "solve_error_mean"), 10.0);
+      EXPECT_LT(num(row, "solve_error_mean"), 0.01);
     }
   }
   // The sweep (fixed 2 and 10 per engine, adaptive 3) and the seed's set-ups (sequential fixed:10 on
