@@ -24,7 +24,7 @@ struct Contact {
   Vec3 anchorA = Vec3::Zero(), anchorB = Vec3::Zero();
   bool anchored = false;
   /// The dynamic body of this contact is pressed from opposite sides by bodies that cannot move
-  /// (static or kinematic; World::markPinchedContacts): no push-out, no impulse carried between steps.
+  /// (static or kinematic; haif/pinch.h): no push-out, no impulse carried between steps.
   bool pinched = false;
   bool touching() const { return manifold.count > 0; }
 };

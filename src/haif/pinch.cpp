@@ -13,15 +13,16 @@ uint32_t PinchDetector::mark(const BodyStore& bodies, const ContactEdge* edges, 
     const bool da = bodies.isAwakeDynamic(e.a);
     const uint32_t dyn = da ? e.a : e.b;
     const Contact& c = contacts[ci];
-    candidates_.push_back(ci);
     // The normal points from shape A to shape B: into the dynamic body when it is B.
     const Vec3 into = da ? Vec3(-c.manifold.points[0].normal) : c.manifold.points[0].normal;
     int32_t& slot = noteOfBody_[dyn];
     if (slot < 0) {
       slot = int32_t(notes_.size());
       notes_.push_back(Note{dyn, into, Vec3::Zero()});
+      candidates_.push_back({ci, uint32_t(slot)});
       continue;
     }
+    candidates_.push_back({ci, uint32_t(slot)});
     Note& note = notes_[slot];
     if (into.dot(note.n1) < kOpposed || (note.two && into.dot(note.n2) < kOpposed)) {
       note.pinched = true;
@@ -30,11 +31,7 @@ uint32_t PinchDetector::mark(const BodyStore& bodies, const ContactEdge* edges, 
       note.two = true;
     }
   }
-  for (const uint32_t ci : candidates_) {
-    Contact& c = contacts[ci];
-    const uint32_t dyn = bodies.isAwakeDynamic(c.a) ? c.a : c.b;
-    c.pinched = notes_[noteOfBody_[dyn]].pinched;
-  }
+  for (const Candidate& k : candidates_) contacts[k.contact].pinched = notes_[k.note].pinched;
   uint32_t pinched = 0;
   for (const Note& note : notes_) {
     pinched += note.pinched ? 1u : 0u;

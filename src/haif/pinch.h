@@ -39,7 +39,11 @@ class PinchDetector {
   };
   std::vector<int32_t> noteOfBody_;   // per body: its Note this step, or -1
   std::vector<Note> notes_;
-  std::vector<uint32_t> candidates_;  // contacts between a dynamic and an immovable body, overlapping
+  struct Candidate {
+    uint32_t contact;  // overlapping, between a dynamic and an immovable body
+    uint32_t note;     // its dynamic body's Note
+  };
+  std::vector<Candidate> candidates_;
 };
 
 }  // namespace haif
