@@ -1104,7 +1104,9 @@ void World::step() {
   // 7. Integration and sleep; no body moves faster than the bound (speed_bound.h).
   const auto t2 = Clock::now();
   boundSpeeds();
+  const float restSpeed = restDampingSpeed(settings_.restDamping, settings_.gravity, dt);
   parallelFor(n, 512, [&](uint32_t b, uint32_t e) {
+    dampRestingMotion(bodies_, islandOfBody_.data(), islands_, restSpeed, b, e);
     integratePositions(bodies_, b, e, dt, settings_.sleepLinear, settings_.sleepAngular);
   });
   const auto t3 = Clock::now();

@@ -15,9 +15,10 @@
 #include "dynamics/joint_tree.h"
 #include "haif/island_split.h"
 #include "haif/islands.h"
-#include "haif/pinch.h"
 #include "haif/iteration_controller.h"
 #include "haif/lane_batches.h"
+#include "haif/pinch.h"
+#include "haif/rest_damping.h"
 #include "haif/speed_bound.h"
 #include "haif/step_stats.h"
 #include "haif/tsan_pool.h"
@@ -59,6 +60,9 @@ struct WorldSettings {
   /// Bodies pressed from opposite sides by static or kinematic ones get no push-out and carry no
   /// impulse between steps, and their static contacts are solved last (haif/pinch.h).
   bool resolvePinches = true;
+  /// Bodies in contact moving slower than this fraction of |g| dt are slowed before their poses move:
+  /// the solve's leftover creep in a resting pile (haif/rest_damping.h). 0: off.
+  float restDamping = 0.01f;
   bool sleeping = false;
   float timeToSleep = 0.5f;         ///< s an island must rest before it sleeps
   float sleepLinear = 0.05f;        ///< m/s

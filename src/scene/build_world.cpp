@@ -21,6 +21,7 @@ WorldSettings worldSettingsFor(const SceneDesc& scene) {
   s.chainSolve = scene.settings.chainSolve;
   s.wideSolve = scene.settings.wideSolve;
   s.reuseManifolds = scene.settings.reuseManifolds;
+  s.restDamping = scene.settings.restDamping;
   return s;
 }
 

@@ -55,7 +55,7 @@ std::string syntaxMessage(const std::string& what) {
 
 void parseSettings(const JsonNode& node, SimSettings& s) {
   checkKeys(node, {"dt", "gravity", "iterations", "omega", "beta", "slop", "sleeping", "accelerate", "momentum_layers",
-                   "chain_solve", "wide_solve", "reuse_manifolds", "frames"});
+                   "chain_solve", "wide_solve", "reuse_manifolds", "rest_damping", "frames"});
   s.dt = optPositive(node, "dt", s.dt);
   if (s.dt > 1.0f) fail(node.member("dt"), "must be <= 1 s (got " + formatNumber(s.dt) + "; 60 Hz is 0.0166666667)");
   const JsonNode g = node.member("gravity");
@@ -78,6 +78,12 @@ void parseSettings(const JsonNode& node, SimSettings& s) {
   if (node.member("chain_solve").present()) s.chainSolve = readBool(node.member("chain_solve"));
   if (node.member("wide_solve").present()) s.wideSolve = readBool(node.member("wide_solve"));
   if (node.member("reuse_manifolds").present()) s.reuseManifolds = readBool(node.member("reuse_manifolds"));
+  const JsonNode rest = node.member("rest_damping");
+  if (rest.present()) {
+    s.restDamping = readFloat(rest);
+    if (!(s.restDamping >= 0.0f && s.restDamping <= 1.0f))
+      fail(rest, "must be in [0, 1] (got " + formatNumber(s.restDamping) + "; 0 turns it off)");
+  }
   s.frames = optInt(node, "frames", s.frames, 1, 100000000);
 }
 

@@ -237,6 +237,9 @@ bool validateScene(const SceneDesc& scene, SceneIssue& issue) {
       !c.nonNegative("settings.momentum_layers", s.momentumLayers))
     return false;
   if (s.beta > 1.0f) return c.bad("settings.beta", "must be in [0, 1] (got " + formatNumber(s.beta) + ")");
+  if (!c.nonNegative("settings.rest_damping", s.restDamping)) return false;
+  if (s.restDamping > 1.0f)
+    return c.bad("settings.rest_damping", "must be in [0, 1] (got " + formatNumber(s.restDamping) + "; 0 turns it off)");
   if (s.frames < 1) return c.bad("settings.frames", "must be >= 1 (got " + std::to_string(s.frames) + ")");
 
   if (scene.materials.empty()) return c.bad("materials", "materials[0] (\"default\") must exist");

@@ -48,6 +48,10 @@ TEST(ValidateScene, RejectsEachBrokenInvariant) {
   EXPECT_EQ(issueOf(s), "settings.momentum_layers: must be >= 0 (got -1)");
 
   s = validScene();
+  s.settings.restDamping = -0.5f;
+  EXPECT_EQ(issueOf(s), "settings.rest_damping: must be >= 0 (got -0.5)");
+
+  s = validScene();
   s.settings.iterations = 0;
   EXPECT_EQ(issueOf(s), "settings.iterations: must be >= 1 (got 0)");
 

@@ -11,13 +11,14 @@ namespace haif::test {
 namespace {
 
 // Largest drop (m) of a dynamic body after `steps` steps of a shipped scene.
-float maxDropAfter(const std::string& scene, int steps, bool frictionAnchors) {
+float maxDropAfter(const std::string& scene, int steps, bool frictionAnchors, float restDamping = 0.01f) {
   Simulation sim;
   std::string error;
   EXPECT_TRUE(makeSimulation(std::string(HAIF_SOURCE_DIR) + "/scenes/" + scene, SolverSpec{}, 2, sim, error)) << error;
   if (!sim.world) return 1e30f;
   World& w = *sim.world;
   w.settings().frictionAnchors = frictionAnchors;
+  w.settings().restDamping = restDamping;
   const std::vector<Transform> start = w.bodies().xf;
   for (int i = 0; i < steps; ++i) w.step();
   float drop = 0.0f;
@@ -28,10 +29,11 @@ float maxDropAfter(const std::string& scene, int steps, bool frictionAnchors) {
 
 TEST(LongRuns, CardHouseStandsForAMinute) {
   // Seven cards held by friction alone. Velocity-level friction let them creep: 2 cm by step 1200,
-  // collapsed (0.94 m) by 2400. The friction anchors pull each sticking contact's drift back.
+  // collapsed (0.94 m) by 2400. The friction anchors pull each sticking contact's drift back; rest
+  // damping (haif/rest_damping.h) alone holds it too (1.3 cm), so the control goes without both.
   const float anchored = maxDropAfter("stress/card_house.json", 3600, true);
   EXPECT_LT(anchored, 0.02f);
-  EXPECT_GT(maxDropAfter("stress/card_house.json", 3600, false), 0.1f) << "the control should collapse";
+  EXPECT_GT(maxDropAfter("stress/card_house.json", 3600, false, 0.0f), 0.1f) << "the control should collapse";
 }
 
 }  // namespace
