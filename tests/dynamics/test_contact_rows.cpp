@@ -77,10 +77,11 @@ TEST(ContactRows, FrictionRowsAndTheirCouplingMatchTheJacobians) {
     EXPECT_NEAR(c.twistCoupling[i], k, 1e-5 + 1e-4 * std::abs(k)) << "tangent " << i;
   }
 
-  // The twist lever: the points' mean distance from the centre.
-  double radius = 0.0;
-  for (int i = 0; i < 4; ++i) radius += (s.contact.manifold.points[i].position.cast<double>() - centre).norm() / 4.0;
-  EXPECT_NEAR(c.twistRadius, radius, 1e-5);
+  // The twist lever: the mean distance from the centre of the patch the 4 points bound, taken as
+  // 0.541 times their RMS distance (exact for a square: (√2 + ln(1 + √2)) / 3 / √2).
+  double meanSquare = 0.0;
+  for (int i = 0; i < 4; ++i) meanSquare += (s.contact.manifold.points[i].position.cast<double>() - centre).squaredNorm() / 4.0;
+  EXPECT_NEAR(c.twistRadius, 0.541 * std::sqrt(meanSquare), 1e-5);
 }
 
 }  // namespace
