@@ -234,8 +234,11 @@ inline void storeRows(RowVectors& rows, const Lanes3& v) {
 
 // Tangential impulse, as a share of the friction limit, at which a contact counts as sliding.
 constexpr float kAnchorRelease = 0.98f;
+// Relative travel (m) in a step beyond which a pair's rows are re-aimed for the relax sweeps
+// (reaimForRelax): below it the two lever arms differ by less than the slop's fifth.
+constexpr float kReaimTravel = 1e-3f;
 void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci, const SolverParams& p,
-                    ContactConstraint& cc) {
+                    ContactConstraint& cc, const Vec3& shift) {
   const uint32_t a = contact.a, b = contact.b;
   cc.a = a;
   cc.b = b;
@@ -259,9 +262,9 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   F4 px{}, py{}, pz{}, nx{}, ny{}, nz{}, depth{}, warm{};
   for (int i = 0; i < cc.count; ++i) {
     const ContactPoint& mp = contact.manifold.points[i];
-    px[i] = mp.position.x();
-    py[i] = mp.position.y();
-    pz[i] = mp.position.z();
+    px[i] = mp.position.x() + shift.x();
+    py[i] = mp.position.y() + shift.y();
+    pz[i] = mp.position.z() + shift.z();
     nx[i] = mp.normal.x();
     ny[i] = mp.normal.y();
     nz[i] = mp.normal.z();
@@ -479,6 +482,29 @@ inline F4 rowBiases(const ContactConstraint& c, bool useBias) {
 }
 
 }  // namespace
+
+void reaimForRelax(const BodyStore& bodies, const Contact& contact, const SolverParams& p, ContactConstraint& cc) {
+  if (cc.count == 0 || !cc.dynA || !cc.dynB) return;  // one side immovable: its lever does not matter
+  const Vec3 moveA = p.dt * bodies.v[cc.a], moveB = p.dt * bodies.v[cc.b];
+  if ((moveB - moveA).squaredNorm() < kReaimTravel * kReaimTravel) return;
+  // A pair pushed apart (overlapping beyond the slop) moves by its push-out, not by a collision.
+  for (int i = 0; i < cc.count; ++i)
+    if (cc.bias[i] < 0.0f) return;
+  const Vec3 shift = 0.5f * (moveA + moveB);
+  alignas(16) float normal[kMaxManifoldPoints], bias[kMaxManifoldPoints], bounce[kMaxManifoldPoints], friction[4],
+      frictionBias[4];
+  std::copy_n(cc.normalImpulse, kMaxManifoldPoints, normal);
+  std::copy_n(cc.bias, kMaxManifoldPoints, bias);
+  std::copy_n(cc.restitutionBias, kMaxManifoldPoints, bounce);
+  std::copy_n(cc.frictionImpulse, 4, friction);
+  std::copy_n(cc.frictionBias, 4, frictionBias);
+  prepareContact(bodies, contact, cc.contact, p, cc, shift);
+  std::copy_n(normal, kMaxManifoldPoints, cc.normalImpulse);
+  std::copy_n(bias, kMaxManifoldPoints, cc.bias);
+  std::copy_n(bounce, kMaxManifoldPoints, cc.restitutionBias);
+  std::copy_n(friction, 4, cc.frictionImpulse);
+  std::copy_n(frictionBias, 4, cc.frictionBias);
+}
 
 void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n) {
   for (size_t k = 0; k < n; ++k) {

@@ -116,9 +116,19 @@ constexpr int kManifoldNormalPasses = 4;
 /// Solver rows one manifold of `points` points costs per sweep: its normal rows and 3 friction rows.
 constexpr uint32_t solverRowsFor(int points) { return points > 0 ? uint32_t(points) + 3u : 0u; }
 
-/// Builds the rows of `contact` (index ci) into `cc` from the current body state.
+/// Builds the rows of `contact` (index ci) into `cc` from the current body state, with the manifold's
+/// points moved by `shift` (see reaimForRelax).
 void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci, const SolverParams& p,
-                    ContactConstraint& cc);
+                    ContactConstraint& cc, const Vec3& shift = Vec3::Zero());
+
+/// After the positions moved, a relax sweep applied each impulse to each body at the lever arm it had
+/// before: to A at its old point carried along with A, to B at its old point carried along with B,
+/// two points (vA − vB) dt apart, so every impulse between two bodies that moved against each other
+/// turned the pair's angular momentum (2 % through a glancing collision at 5 m/s). For such pairs
+/// (both dynamic, closing or parting by more than 1 mm a step) the rows are built again about one
+/// point, the old one moved by the mean of the two bodies' moves; impulses and biases are kept.
+/// Pairs being pushed apart (a point beyond the slop) are left as they are.
+void reaimForRelax(const BodyStore& bodies, const Contact& contact, const SolverParams& p, ContactConstraint& cc);
 
 /// Applies the accumulated (warm-start) impulses of the constraints to the body velocities.
 void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n);

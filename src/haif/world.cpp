@@ -754,7 +754,19 @@ void World::shareSpareIterations(int iterations) {
 }
 
 void World::relaxIslands(int relaxIterations) {
+  const SolverParams sp = solverParams();
   auto relax = [&](uint32_t k) {
+    // A chain keeps the factors of its rows from the main sweeps, lanes hold packed copies, and a
+    // jointed island's joint rows were built with the stiffened inertia that integration has since
+    // reset (stiffenJointedBodies; re-aimed contact rows next to them gained energy in random
+    // mixed worlds): their rows stay as they were.
+    if (relaxIterations > 0 && !isChain_[k] && !isWide(k) && islands_.islands[k].jointCount == 0) {
+      const Island& isl = islands_.islands[k];
+      ContactConstraint* cs = constraints_.data() + isl.firstContact;
+      forEachContactChunk(k, 1024, [&](uint32_t b, uint32_t e) {
+        for (uint32_t j = b; j < e; ++j) reaimForRelax(bodies_, contacts_[cs[j].contact], sp, cs[j]);
+      });
+    }
     for (int it = 0; it < relaxIterations; ++it) sweepIsland(k, false);
   };
   auto store = [&](uint32_t k) {

@@ -119,43 +119,51 @@ TEST(Conservation, ThinCapsuleTumbleDoesNotSpinUp) {
   EXPECT_LT(worstL, 5e-5);  // 2e-5 with w taken from L in the body frame; 6e-5 before
 }
 
-// Disabled: known defect, see the issue 2 note. The relax sweeps apply impulses after positions moved,
-// with lever arms from before, so total angular momentum drifts by ~1% in a collision.
-TEST(Conservation, DISABLED_MomentumThroughAGlancingCollision) {
-  World w(zeroG());
-  BodyDef d;
-  d.shape = Shape::sphere(0.5f);
-  d.mass = 1.0f;
-  d.friction = 0.5f;
-  d.restitution = 0.3f;
-  d.xf.p = Vec3(-3.0f, 0.3f, 0.0f);
-  d.linearVelocity = Vec3(4.0f, 0.0f, 0.0f);
-  d.angularVelocity = Vec3(0.0f, 0.0f, 5.0f);
-  const uint32_t a = w.addBody(d);
-  d.shape = Shape::box(Vec3(0.4f, 0.6f, 0.5f));
-  d.mass = 2.0f;
-  d.xf.p = Vec3(0.0f, 0.0f, 0.1f);
-  d.linearVelocity = Vec3(-1.0f, 0.0f, 0.0f);
-  d.angularVelocity = Vec3::Zero();
-  const uint32_t b = w.addBody(d);
-  auto totalL = [&] {
-    Eigen::Vector3d L = Eigen::Vector3d::Zero();
-    for (uint32_t i : {a, b})
-      L += w.bodies().xf[i].p.cast<double>().cross(double(w.bodies().mass[i]) * w.bodies().v[i].cast<double>()) +
-           angularMomentum(w, i);
-    return L;
-  };
-  const Eigen::Vector3d p0 = linearMomentum(w), L0 = totalL();
-  const Vec3 va0 = w.bodies().v[a];
-  bool touched = false;
-  for (int s = 0; s < 120; ++s) {
-    w.step();
-    touched = touched || w.lastStats().contactPoints > 0;
+// A sphere glancing off a spinning box, no gravity: the impulses between them may not change the
+// pair's linear or angular momentum. The relax sweeps (after the positions moved) applied each impulse
+// at lever arms from before the move, two points (vA - vB) dt apart, and the angular momentum drifted
+// by 2.06 % here; the rows of pairs that moved against each other are re-aimed about one point now
+// (reaimForRelax). At 10 iterations and at the adaptive floor of 4.
+TEST(Conservation, MomentumThroughAGlancingCollision) {
+  for (const int iterations : {10, 4}) {
+    WorldSettings ws = zeroG();
+    ws.iterations = iterations;
+    World w(ws);
+    BodyDef d;
+    d.shape = Shape::sphere(0.5f);
+    d.mass = 1.0f;
+    d.friction = 0.5f;
+    d.restitution = 0.3f;
+    d.xf.p = Vec3(-3.0f, 0.3f, 0.0f);
+    d.linearVelocity = Vec3(4.0f, 0.0f, 0.0f);
+    d.angularVelocity = Vec3(0.0f, 0.0f, 5.0f);
+    const uint32_t a = w.addBody(d);
+    d.shape = Shape::box(Vec3(0.4f, 0.6f, 0.5f));
+    d.mass = 2.0f;
+    d.xf.p = Vec3(0.0f, 0.0f, 0.1f);
+    d.linearVelocity = Vec3(-1.0f, 0.0f, 0.0f);
+    d.angularVelocity = Vec3::Zero();
+    const uint32_t b = w.addBody(d);
+    auto totalL = [&] {
+      Eigen::Vector3d L = Eigen::Vector3d::Zero();
+      for (uint32_t i : {a, b})
+        L += w.bodies().xf[i].p.cast<double>().cross(double(w.bodies().mass[i]) * w.bodies().v[i].cast<double>()) +
+             angularMomentum(w, i);
+      return L;
+    };
+    const Eigen::Vector3d p0 = linearMomentum(w), L0 = totalL();
+    const Vec3 va0 = w.bodies().v[a];
+    bool touched = false;
+    for (int s = 0; s < 120; ++s) {
+      w.step();
+      touched = touched || w.lastStats().contactPoints > 0;
+    }
+    ASSERT_TRUE(touched) << "the bodies never met";
+    EXPECT_GT((w.bodies().v[a] - va0).norm(), 1.0f) << "the collision changed nothing";
+    // Float rounding of sums of ~1e2 terms: 1e-5 of the momenta (the issue asked 0.5 % and 1 %).
+    EXPECT_LT(rel(linearMomentum(w), p0), 1e-5) << iterations << ": " << linearMomentum(w).transpose() << " vs " << p0.transpose();
+    EXPECT_LT(rel(totalL(), L0), 1e-5) << iterations << ": " << totalL().transpose() << " vs " << L0.transpose();
   }
-  ASSERT_TRUE(touched) << "the bodies never met";
-  EXPECT_GT((w.bodies().v[a] - va0).norm(), 1.0f) << "the collision changed nothing";
-  EXPECT_LT(rel(linearMomentum(w), p0), 1e-5) << linearMomentum(w).transpose() << " vs " << p0.transpose();
-  EXPECT_LT(rel(totalL(), L0), 1e-4) << totalL().transpose() << " vs " << L0.transpose();
 }
 
 }  // namespace
