@@ -116,6 +116,11 @@ bool loadReelPlaylist(const std::string& path, ReelPlaylist& out, std::string& e
     const TextLocation loc = locationOfOffset(text, offset);
     return path + ":" + std::to_string(loc.line) + ":" + std::to_string(loc.column) + ": ";
   };
+  const size_t deep = findTooDeepNesting(text);
+  if (deep != std::string::npos) {
+    error = at(deep) + "syntax error: nested deeper than " + std::to_string(kMaxJsonDepth) + " levels of [ and {";
+    return false;
+  }
   Json doc;
   try {
     doc = Json::parse(text);

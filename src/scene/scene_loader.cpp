@@ -195,6 +195,12 @@ std::string issuePointer(const SceneIssue& issue, const ParseContext& ctx) {
 }  // namespace
 
 bool parseSceneText(const std::string& text, const std::string& pathForMessages, SceneDesc& out, std::string& error) {
+  const size_t deep = findTooDeepNesting(text);
+  if (deep != std::string::npos) {
+    error = formatError(pathForMessages, text, deep, "syntax error",
+                        "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels of [ and {");
+    return false;
+  }
   Json doc;
   try {
     doc = Json::parse(text);

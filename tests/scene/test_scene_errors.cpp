@@ -1,6 +1,8 @@
 // Bad scene input: each problem gives one line "FILE:LINE:COL: PLACE: what", pointing at the value.
 #include "scene_test_util.h"
 
+#include "scene/json_positions.h"
+
 namespace haif::test {
 namespace {
 
@@ -223,6 +225,20 @@ TEST(SceneErrors, AJointOverTheSupportedMassRatioIsRefused) {
       "    {\"name\": \"b\", \"shape\": {\"type\": \"sphere\"}, \"position\": [0, -1, 0], \"mass\": 1e6}\n  ],\n"
       "  \"joints\": [{\"type\": \"ball\", \"body_a\": \"a\", \"body_b\": \"b\", \"anchor\": [0, -0.5, 0]}]\n}\n";
   EXPECT_ERROR(text, "\"b\", \"anchor\"", "joints[0].body_b: joins bodies of 1 and 1000000 kg: a mass ratio of 1:1000000, above the 1:100000");
+}
+
+// 20,000 nested '[' overflowed the stack of the recursive position scanner (a segfault), also where
+// nothing reads the value, inside a comment.
+TEST(SceneErrors, DeepNestingIsOneSyntaxErrorNotACrash) {
+  const std::string deep = std::string(20000, '[') + std::string(20000, ']');
+  const std::string text = "{\"_comment\": " + deep + ", \"bodies\": []}";
+  const std::string e = parseError(text);
+  // The object is level 1, so the 256th bracket opens level 257: column 14 + 255.
+  EXPECT_EQ(e, "mem/bad.json:1:269: syntax error: nested deeper than 256 levels of [ and {");
+  EXPECT_EQ(parseError("{\"bodies\": " + deep + "}").rfind("mem/bad.json:1:", 0), 0u);
+  // As deep as allowed is fine.
+  const std::string ok = "{\"_comment\": " + std::string(kMaxJsonDepth - 1, '[') + std::string(kMaxJsonDepth - 1, ']') + "}";
+  EXPECT_TRUE(parseOk(ok).bodies.empty());
 }
 
 }  // namespace
