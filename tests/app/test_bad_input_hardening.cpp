@@ -1,5 +1,7 @@
 // Inputs that once broke the commands (issue 26): 20,000 nested brackets crashed every command that
-// reads a scene. Each is now one clear line, a non-zero exit (below 128: no signal) and nothing written.
+// reads a scene; a folder given as the scene read as "1:1 syntax error"; a scene name that is a path
+// wrote outside output/. Each is now one clear line, a non-zero exit (below 128: no signal) and
+// nothing written.
 #include "haif_process.h"
 
 #include <nlohmann/json.hpp>
@@ -71,6 +73,25 @@ TEST_F(BadInputHardening, DeepNestingIsOneErrorInEveryCommandThatReadsAScene) {
   std::ofstream(dir_ / "reel.json") << R"({"items": [{"type": "scene", "scene": "deep.json", "seconds": 1}]})";
   expectOneLineFailure(runHaif("reel '" + path("reel.json") + "' --check", dir_), {"nested deeper than 256 levels"});
   EXPECT_TRUE(written().empty());
+}
+
+TEST_F(BadInputHardening, AFolderGivenAsTheSceneOrPlaylistSaysSo) {
+  expectOneLineFailure(runHaif("run '" + dir_.string() + "' --no-render --frames 2 --out '" + path("out") + "'", dir_),
+                       {dir_.string() + ": is a directory, not a scene file"});
+  expectOneLineFailure(runHaif("reel '" + dir_.string() + "' --check", dir_),
+                       {dir_.string() + ": is a directory, not a playlist"});
+  EXPECT_TRUE(written().empty());
+}
+
+TEST_F(BadInputHardening, ASceneNameThatIsAPathWritesNothingOutsideOutput) {
+  fs::create_directories(dir_ / "a" / "b");
+  const std::string text = "{\n  \"name\": \"../../../escaped\",\n  \"generators\": [{\"type\": \"ground\"}]\n}\n";
+  std::ofstream(dir_ / "a" / "b" / "escape.json") << text;
+  // From a/b, output/../../../escaped would be dir_/escaped.
+  const auto r = runHaif("run escape.json --no-render --frames 2", dir_, "cd '" + (dir_ / "a" / "b").string() + "' && ");
+  expectOneLineFailure(r, {"escape.json:2:11: name: must be a plain name, not a path (got '../../../escaped')"});
+  EXPECT_FALSE(fs::exists(dir_ / "escaped"));
+  EXPECT_FALSE(fs::exists(dir_ / "a" / "b" / "output"));
 }
 
 }  // namespace
