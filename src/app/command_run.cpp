@@ -80,6 +80,7 @@ int commandRun(int argc, char** argv) {
   if (!makeSimulation(scenePath, spec, threads, sim, error)) return fail(error);
   World& world = *sim.world;
   if (frames < 0) frames = sim.scene.settings.frames;
+  if (!checkReplayLength(sim, spec, frames, error)) return fail(error);
   world.setSolveErrorInterval(errorEvery);
 
   // Check the output folder before spending time on the simulation.
@@ -88,13 +89,7 @@ int commandRun(int argc, char** argv) {
   const std::string framesDir = outDir + "/frames";
   if (render && !ensureWritableDir(framesDir, error)) return fail(error);
 
-  RunInfo info;
-  info.scene = sim.scene.name;
-  info.bodies = world.bodyCount();
-  info.threads = threads;
-  info.mode = sim.mode;
-  info.budgetMs = sim.mode == "fixed" ? 0.0 : budget;
-  info.iMin = world.controller().iMin;
+  RunInfo info = runInfoFor(sim, budget, threads);
 
   std::vector<StepStats> stats;
   RunMetrics metrics;

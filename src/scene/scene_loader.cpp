@@ -227,6 +227,8 @@ bool parseSceneText(const std::string& text, const std::string& pathForMessages,
 
   SceneDesc scene;
   scene.sourcePath = pathForMessages;
+  scene.sourceHash = 0xcbf29ce484222325ull;  // FNV-1a, 64 bits
+  for (const char c : text) scene.sourceHash = (scene.sourceHash ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
   scene.name = stemOf(pathForMessages);
   ParseContext ctx;
   ctx.sceneDir = directoryOf(pathForMessages);

@@ -1,7 +1,8 @@
 // Inputs that once broke the commands (issue 26): 20,000 nested brackets crashed every command that
 // reads a scene; a folder given as the scene read as "1:1 syntax error"; a scene name that is a path
-// wrote outside output/. Each is now one clear line, a non-zero exit (below 128: no signal) and
-// nothing written.
+// wrote outside output/; a replay of a fixed run did not reproduce it, and a replay log of another
+// scene, or a shorter one, was accepted. Each is now one clear line, a non-zero exit (below 128: no
+// signal) and nothing written.
 #include "haif_process.h"
 
 #include <nlohmann/json.hpp>
@@ -92,6 +93,49 @@ TEST_F(BadInputHardening, ASceneNameThatIsAPathWritesNothingOutsideOutput) {
   expectOneLineFailure(r, {"escape.json:2:11: name: must be a plain name, not a path (got '../../../escaped')"});
   EXPECT_FALSE(fs::exists(dir_ / "escaped"));
   EXPECT_FALSE(fs::exists(dir_ / "a" / "b" / "output"));
+}
+
+TEST_F(BadInputHardening, ReplayOfAFixedRunReproducesItsStateHash) {
+  const std::string scene = std::string(HAIF_SOURCE_DIR) + "/scenes/tower_collapse.json";
+  const auto a = runHaif("run '" + scene + "' --no-render --frames 30 --threads 2 --out '" + path("fixed") + "'", dir_);
+  ASSERT_EQ(a.exitCode, 0) << a.err;
+  const auto b = runHaif("run '" + scene + "' --no-render --frames 30 --threads 1 --replay '" + path("fixed") +
+                             "/stats.csv' --out '" + path("replayed") + "'",
+                         dir_);
+  ASSERT_EQ(b.exitCode, 0) << b.err;
+  const auto summary = [&](const std::string& run) {
+    return nlohmann::json::parse(test::readWholeFile(dir_ / run / "summary.json"));
+  };
+  EXPECT_EQ(summary("replayed")["state_hash"], summary("fixed")["state_hash"]);
+  EXPECT_EQ(summary("fixed")["scene_hash"], summary("replayed")["scene_hash"]);
+  EXPECT_EQ(summary("fixed")["scene_hash"].get<std::string>().size(), 16u);
+}
+
+TEST_F(BadInputHardening, AReplayLogOfAnotherSceneOrShorterThanTheRunIsRefused) {
+  const auto a = runHaif("run '" + path("stack.json") + "' --no-render --frames 5 --out '" + path("log") + "'", dir_);
+  ASSERT_EQ(a.exitCode, 0) << a.err;
+  const std::string other = std::string(HAIF_SOURCE_DIR) + "/scenes/stacks_100.json";
+  const std::string log = path("log") + "/stats.csv";
+  expectOneLineFailure(
+      runHaif("run '" + other + "' --no-render --frames 5 --replay '" + log + "' --out '" + path("r1") + "'", dir_),
+      {log + ": a log of scene 'hardening_stack'", "not of " + other});
+  expectOneLineFailure(
+      runHaif("run '" + path("stack.json") + "' --no-render --frames 6 --replay '" + log + "' --out '" + path("r2") + "'",
+              dir_),
+      {log + ": the log holds 5 steps, fewer than the 6 to run"});
+  expectOneLineFailure(runHaif("compare '" + path("stack.json") + "' --left fixed:10 --right replay:" + log +
+                                   " --frames 6 --width 128 --height 200 --out '" + path("c.mp4") + "'",
+                               dir_),
+                       {"right side: replay:" + log + ": the log holds 5 steps, fewer than the 6 to show"});
+  EXPECT_FALSE(fs::exists(dir_ / "r1"));
+  EXPECT_FALSE(fs::exists(dir_ / "r2"));
+  EXPECT_FALSE(fs::exists(dir_ / "c.mp4"));
+  // The same length is fine.
+  EXPECT_EQ(runHaif("run '" + path("stack.json") + "' --no-render --frames 5 --replay '" + log + "' --out '" +
+                        path("r3") + "'",
+                    dir_)
+                .exitCode,
+            0);
 }
 
 }  // namespace
