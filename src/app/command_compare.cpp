@@ -1,6 +1,7 @@
 // haif compare SCENE --left SPEC --right SPEC: one scene under two solver set-ups, side by side in one video.
 #include "app/cli.h"
 #include "app/commands.h"
+#include "tools/interrupts.h"
 
 #ifdef HAIF_HAVE_RENDER
 #include "app/comparison_clip.h"
@@ -22,6 +23,7 @@ namespace haif {
 namespace {
 
 int fail(const std::string& message, int status) {
+  waitIfInterrupted();
   const bool prefixed = message.rfind("haif compare: ", 0) == 0;
   std::fprintf(stderr, "%s%s\n", prefixed ? "" : "haif compare: ", message.c_str());
   return status;

@@ -1,6 +1,7 @@
 // haif diff A B: visual regression between two runs (or two frame folders), frame by frame.
 #include "app/cli.h"
 #include "app/commands.h"
+#include "tools/interrupts.h"
 #include "tools/atomic_file.h"
 #include "tools/diff_report.h"
 #include "tools/progress.h"
@@ -22,6 +23,7 @@ namespace fs = std::filesystem;
 constexpr int kBadInput = 2;
 
 int fail(const std::string& message, int status) {
+  waitIfInterrupted();
   const bool prefixed = message.rfind("haif diff: ", 0) == 0;  // CommandLine's messages name the command
   std::fprintf(stderr, "%s%s\n", prefixed ? "" : "haif diff: ", message.c_str());
   return status;

@@ -1,6 +1,7 @@
 // haif run SCENE: simulate, optionally render frames, write stats.csv and summary.json.
 #include "app/cli.h"
 #include "app/commands.h"
+#include "tools/interrupts.h"
 #include "app/frame_builder.h"
 #include "tools/atomic_file.h"
 #include "tools/frame_masks.h"
@@ -27,6 +28,7 @@ namespace haif {
 namespace {
 
 int fail(const std::string& message, int status = 1) {
+  waitIfInterrupted();
   std::fprintf(stderr, "%s\n", message.c_str());
   return status;
 }

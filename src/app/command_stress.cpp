@@ -2,6 +2,7 @@
 // block, print one line per scene and write DIR/stress.json. Exit 0 all pass, 1 some fail, 2 bad input.
 #include "app/cli.h"
 #include "app/commands.h"
+#include "tools/interrupts.h"
 #include "scene/scene_loader.h"
 #include "tools/atomic_file.h"
 #include "tools/stress_suite.h"
@@ -16,6 +17,7 @@ namespace haif {
 namespace {
 
 int fail(const std::string& message, int status) {
+  waitIfInterrupted();
   std::fprintf(stderr, "%s\n", message.c_str());
   return status;
 }

@@ -2,6 +2,7 @@
 
 #include "render/png_io.h"
 #include "tools/atomic_file.h"
+#include "tools/interrupts.h"
 
 #include <cerrno>
 #include <csignal>
@@ -44,6 +45,7 @@ bool VideoEncoder::open(const std::string& outPath, int width, int height, doubl
                                    out.extension().string()))
                  .string();
   outPath_ = outPath;
+  registerTemporary(tmpPath_);
   frameBytes_ = size_t(width) * size_t(height) * 4;
   frames_ = 0;
 
@@ -76,6 +78,10 @@ bool VideoEncoder::open(const std::string& outPath, int width, int height, doubl
   if (pid_ == 0) {
     // -nostdin only stops ffmpeg reading keys; the frames come in on fd 0 as pipe:0.
     ::dup2(fds[0], 0);
+    // Ctrl-C reaches haif alone, which stops ffmpeg itself and removes its unfinished video
+    // (tools/interrupts.h); haif blocks the signals, and ffmpeg must not inherit that.
+    ::setpgid(0, 0);
+    unblockInterruptsInChild();
     // Encoding is background work: at the lowest priority it waits for the simulation, whose
     // budgeted steps it otherwise preempted.
     if (::nice(19) == -1) { /* still encodes, at normal priority */ }
@@ -84,6 +90,7 @@ bool VideoEncoder::open(const std::string& outPath, int width, int height, doubl
   }
   ::close(fds[0]);
   fd_ = fds[1];
+  registerChild(pid_);
   return true;
 }
 
@@ -118,6 +125,7 @@ bool VideoEncoder::waitForExit(std::string& error) {
   pid_t r;
   do r = ::waitpid(pid_, &status, 0);
   while (r < 0 && errno == EINTR);
+  releaseChild(pid_);
   pid_ = -1;
   if (r < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     const int code = r >= 0 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -149,6 +157,7 @@ bool VideoEncoder::finish(std::string& error) {
     abort();
     return false;
   }
+  releaseTemporary(tmpPath_);
   tmpPath_.clear();
   return true;
 }
@@ -161,9 +170,13 @@ void VideoEncoder::abort() {
     int status = 0;
     while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
     }
+    releaseChild(pid_);
     pid_ = -1;
   }
-  if (!tmpPath_.empty()) std::remove(tmpPath_.c_str());
+  if (!tmpPath_.empty()) {
+    std::remove(tmpPath_.c_str());
+    releaseTemporary(tmpPath_);
+  }
   tmpPath_.clear();
 }
 
