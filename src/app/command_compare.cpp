@@ -60,6 +60,7 @@ int commandCompare(int argc, char** argv) {
       cl.get("--out", "output/" + std::filesystem::path(scenePath).stem().string() + "_compare.mp4");
   if (std::filesystem::path(out).extension() != ".mp4")
     return fail("--out: expected a .mp4 file, got '" + out + "'", 2);
+  if (!checkOutputFile(out, error)) return fail("--out: " + error, 2);
 
   ComparisonClip clip;
   if (!clip.open(scenePath, cl.get("--left"), cl.get("--right"), opt, error)) return fail(error, 1);
@@ -78,15 +79,16 @@ int commandCompare(int argc, char** argv) {
     progress.advance(f + 1);
   }
   progress.finish();
-  if (!sink->finish(error)) return fail(error, 1);
-  if (!notice.empty()) {
+  if (const auto* frames = dynamic_cast<const PngFrameSink*>(sink.get())) {
     // PNG frames instead of a video: say where the timing-dependent regions are, for haif diff.
     FrameMasks masks;
     masks.width = opt.width;
     masks.height = opt.height;
     masks.regions = clip.timingRegions();
-    if (!writeFileAtomic(sink->where() + "/" + kFrameMasksFile, frameMasksJson(masks), error)) return fail(error, 1);
+    if (!writeFileAtomic(frames->stagingDir() + "/" + kFrameMasksFile, frameMasksJson(masks), error))
+      return fail(error, 1);
   }
+  if (!sink->finish(error)) return fail(error, 1);
 
   for (const SimulatedScene* side : {&clip.left(), &clip.right()}) {
     std::vector<float> ms = side->history().totalMs;

@@ -97,6 +97,7 @@ int commandReel(int argc, char** argv) {
       cl.get("--out", "output/" + std::filesystem::path(playlistPath).stem().string() + ".mp4");
   if (std::filesystem::path(out).extension() != ".mp4")
     return fail("--out: expected a .mp4 file, got '" + out + "'", 2);
+  if (!cl.has("--check") && !checkOutputFile(out, error)) return fail("--out: " + error, 2);
 
   ReelPlaylist p;
   if (!loadReelPlaylist(playlistPath, p, error)) return fail(error, 1);

@@ -1,6 +1,7 @@
 #include "tools/video.h"
 
 #include "render/png_io.h"
+#include "tools/frame_masks.h"
 #include "tools/atomic_file.h"
 #include "tools/interrupts.h"
 
@@ -181,7 +182,7 @@ void VideoEncoder::abort() {
 }
 
 bool PngFrameSink::open(const std::string& dir, int width, int height, std::string& error) {
-  if (!ensureWritableDir(dir, error)) return false;
+  if (!folder_.open(dir, {"frame_00000.png", kFrameMasksFile}, error)) return false;
   dir_ = dir;
   width_ = width;
   height_ = height;
@@ -192,7 +193,7 @@ bool PngFrameSink::open(const std::string& dir, int width, int height, std::stri
 bool PngFrameSink::write(const uint8_t* rgba, std::string& error) {
   char name[32];
   std::snprintf(name, sizeof name, "/frame_%05d.png", frames_);
-  if (!render::writePng(dir_ + name, width_, height_, rgba, &error)) return false;
+  if (!render::writePng(folder_.path() + name, width_, height_, rgba, &error)) return false;
   ++frames_;
   return true;
 }
