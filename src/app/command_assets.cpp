@@ -2,6 +2,7 @@
 #include "app/cli.h"
 #include "app/commands.h"
 #include "scene/asset_catalog.h"
+#include "tools/interrupts.h"
 
 #include <cstdio>
 
@@ -19,7 +20,10 @@ int commandAssets(int argc, char** argv) {
     return 2;
   }
   const std::string dir = cl.get("--out", "assets");
+  // The assets are staged in DIR/.assets.tmp and moved in one by one once all are written.
+  registerTemporary(dir + "/.assets.tmp");
   if (!writeGeneratedAssets(dir, error)) {
+    waitIfInterrupted();
     std::fprintf(stderr, "haif assets: %s\n", error.c_str());
     return 1;
   }

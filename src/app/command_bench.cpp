@@ -9,6 +9,8 @@
 #include "tools/bench_plots.h"
 #include "tools/bench_report.h"
 #include "tools/bench_sweep.h"
+#include "tools/interrupts.h"
+#include "tools/staged_output.h"
 
 #include <tbb/info.h>
 
@@ -151,8 +153,10 @@ int commandBench(int argc, char** argv) {
     std::fprintf(stderr, "haif bench: --scenes: expected a comma-separated list of scene names or files\n");
     return 2;
   }
-  if (!ensureWritableDir(outDir, error)) {
-    std::fprintf(stderr, "%s\n", error.c_str());
+  // Checked now, written at the end: the report folder appears whole (tools/staged_output.h).
+  const std::vector<std::string> markers = {"results.csv", "report.md"};
+  if (!checkOutputFolder(outDir, markers, error)) {
+    std::fprintf(stderr, "haif bench: %s\n", error.c_str());
     return 1;
   }
   const bool haif = std::find(engines.begin(), engines.end(), "haif") != engines.end();
@@ -182,6 +186,7 @@ int commandBench(int argc, char** argv) {
       for (size_t i = 0; i < points.size(); ++i) {
         BenchResult r;
         if (!runBenchPoint(path, points[i], steps, errorEvery, r, error)) {
+          waitIfInterrupted();
           std::fprintf(stderr, "%s\n", error.c_str());
           return 1;
         }
@@ -208,9 +213,11 @@ int commandBench(int argc, char** argv) {
   info.rounds = rounds;
   info.engines = engines;
   if (!benchPlotsAvailable()) info.plotsNote = "this haif was built without the renderer (HAIF_BUILD_RENDER=OFF)";
-  if (!writeBenchPlots(outDir, rows, info.plots, error) ||
-      !writeFileAtomic(outDir + "/results.csv", benchResultsCsv(rows), error) ||
-      !writeFileAtomic(outDir + "/report.md", benchReportMarkdown(rows, info), error)) {
+  StagedFolder output;
+  if (!output.open(outDir, markers, error) || !writeBenchPlots(output.path(), rows, info.plots, error) ||
+      !writeFileAtomic(output.path() + "/results.csv", benchResultsCsv(rows), error) ||
+      !writeFileAtomic(output.path() + "/report.md", benchReportMarkdown(rows, info), error) || !output.commit(error)) {
+    waitIfInterrupted();
     std::fprintf(stderr, "%s\n", error.c_str());
     return 1;
   }

@@ -5,6 +5,8 @@
 #include "haif/cost_model.h"
 #include "haif/world.h"
 #include "tools/atomic_file.h"
+#include "tools/interrupts.h"
+#include "tools/staged_output.h"
 
 #include <tbb/info.h>
 
@@ -81,12 +83,13 @@ int commandCalibrate(int argc, char** argv) {
     std::fprintf(stderr, "%s\n", error.c_str());
     return 2;
   }
+  // Checked before measuring, created after: a failed or interrupted calibration leaves nothing.
   const std::string out = cl.get("--out", "output/cost_model.txt");
-  const std::filesystem::path parent = std::filesystem::path(out).parent_path();
-  if (!parent.empty() && !ensureWritableDir(parent.string(), error)) {
-    std::fprintf(stderr, "%s\n", error.c_str());
+  if (!checkOutputFile(out, error)) {
+    std::fprintf(stderr, "haif calibrate: %s\n", error.c_str());
     return 1;
   }
+  registerTemporary(out + ".tmp");  // CostModel::save's temporary name
 
   // Two iteration counts on one thread separate the per-iteration cost from the fixed per-row cost.
   auto w = makeStacks(stacks, 1);
@@ -106,7 +109,9 @@ int commandCalibrate(int argc, char** argv) {
     const double speedup = b.solveMs / std::max(1e-9, p.solveMs);
     m.parallelEfficiency = std::clamp((speedup - 1.0) / double(threads - 1), 0.05, 1.0);
   }
-  if (!m.save(out, error)) {
+  const std::filesystem::path parent = std::filesystem::path(out).parent_path();
+  if ((!parent.empty() && !ensureWritableDir(parent.string(), error)) || !m.save(out, error)) {
+    waitIfInterrupted();
     std::fprintf(stderr, "%s\n", error.c_str());
     return 1;
   }

@@ -1,6 +1,7 @@
 // haif compare SCENE --left SPEC --right SPEC: one scene under two solver set-ups, side by side in one video.
 #include "app/cli.h"
 #include "app/commands.h"
+#include "tools/interrupts.h"
 
 #ifdef HAIF_HAVE_RENDER
 #include "app/comparison_clip.h"
@@ -22,6 +23,7 @@ namespace haif {
 namespace {
 
 int fail(const std::string& message, int status) {
+  waitIfInterrupted();
   const bool prefixed = message.rfind("haif compare: ", 0) == 0;
   std::fprintf(stderr, "%s%s\n", prefixed ? "" : "haif compare: ", message.c_str());
   return status;
@@ -58,6 +60,7 @@ int commandCompare(int argc, char** argv) {
       cl.get("--out", "output/" + std::filesystem::path(scenePath).stem().string() + "_compare.mp4");
   if (std::filesystem::path(out).extension() != ".mp4")
     return fail("--out: expected a .mp4 file, got '" + out + "'", 2);
+  if (!checkOutputFile(out, error)) return fail("--out: " + error, 2);
 
   ComparisonClip clip;
   if (!clip.open(scenePath, cl.get("--left"), cl.get("--right"), opt, error)) return fail(error, 1);
@@ -76,15 +79,16 @@ int commandCompare(int argc, char** argv) {
     progress.advance(f + 1);
   }
   progress.finish();
-  if (!sink->finish(error)) return fail(error, 1);
-  if (!notice.empty()) {
+  if (const auto* frames = dynamic_cast<const PngFrameSink*>(sink.get())) {
     // PNG frames instead of a video: say where the timing-dependent regions are, for haif diff.
     FrameMasks masks;
     masks.width = opt.width;
     masks.height = opt.height;
     masks.regions = clip.timingRegions();
-    if (!writeFileAtomic(sink->where() + "/" + kFrameMasksFile, frameMasksJson(masks), error)) return fail(error, 1);
+    if (!writeFileAtomic(frames->stagingDir() + "/" + kFrameMasksFile, frameMasksJson(masks), error))
+      return fail(error, 1);
   }
+  if (!sink->finish(error)) return fail(error, 1);
 
   for (const SimulatedScene* side : {&clip.left(), &clip.right()}) {
     std::vector<float> ms = side->history().totalMs;

@@ -3,13 +3,14 @@
 #include "app/commands.h"
 #include "tools/atomic_file.h"
 #include "tools/diff_report.h"
+#include "tools/interrupts.h"
 #include "tools/progress.h"
+#include "tools/staged_output.h"
 
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -17,11 +18,10 @@ namespace haif {
 
 namespace {
 
-namespace fs = std::filesystem;
-
 constexpr int kBadInput = 2;
 
 int fail(const std::string& message, int status) {
+  waitIfInterrupted();
   const bool prefixed = message.rfind("haif diff: ", 0) == 0;  // CommandLine's messages name the command
   std::fprintf(stderr, "%s%s\n", prefixed ? "" : "haif diff: ", message.c_str());
   return status;
@@ -171,24 +171,25 @@ int commandDiff(int argc, char** argv) {
   if (!report.statsCompared) report.notes.push_back("stats.csv not compared: both sides must be run folders with one.");
   report.commandLine = commandLineOf(argc, argv);
 
+  // The report folder is built beside its place and moved there when complete: a frame that
+  // cannot be read half-way leaves no diff images, and an earlier report is replaced as a whole.
   const std::string outDir = cl.get("--out", "output/diff");
-  const std::string diffDir = cl.has("--no-diff-images") ? "" : outDir + "/diff";
-  if (!ensureWritableDir(outDir, error) || (!diffDir.empty() && !ensureWritableDir(diffDir, error)))
-    return fail(error, kBadInput);
-  // Diff images of an earlier report would be mistaken for this one's.
-  std::error_code ec;
-  if (!diffDir.empty())
-    for (const auto& e : fs::directory_iterator(diffDir, ec))
-      if (e.is_regular_file() && e.path().extension() == ".png") fs::remove(e.path(), ec);
+  StagedFolder output;
+  if (!output.open(outDir, {"report.json", "report.html"}, error)) return fail(error, kBadInput);
+  const std::string diffDir = cl.has("--no-diff-images") ? "" : output.path() + "/diff";
+  if (!diffDir.empty() && !ensureWritableDir(diffDir, error)) return fail(error, kBadInput);
 
   Progress progress("diff", "frame", int(a.frames.size()));
   const auto onFrame = [&](int done) { progress.advance(done); };
   if (!diffFrameFolders(a, b, options, limits, diffDir, report.frames, error, onFrame))
     return fail(error, kBadInput);
   progress.finish();
+  for (FrameVerdict& f : report.frames)  // where the images will be once the folder is in place
+    if (!f.diffImage.empty()) f.diffImage = outDir + "/diff/" + f.name;
 
-  if (!writeFileAtomic(outDir + "/report.json", diffReportJson(report, outDir), error) ||
-      !writeFileAtomic(outDir + "/report.html", diffReportHtml(report, outDir), error))
+  if (!writeFileAtomic(output.path() + "/report.json", diffReportJson(report, outDir), error) ||
+      !writeFileAtomic(output.path() + "/report.html", diffReportHtml(report, outDir), error) ||
+      !output.commit(error))
     return fail(error, kBadInput);
 
   double worstRatio = 0.0, worstSsim = 1.0;

@@ -1,6 +1,7 @@
 // haif reel PLAYLIST.json: title cards, scenes and comparisons in sequence in one video.
 #include "app/cli.h"
 #include "app/commands.h"
+#include "tools/interrupts.h"
 #include "app/reel_playlist.h"
 
 #ifdef HAIF_HAVE_RENDER
@@ -26,6 +27,7 @@ namespace haif {
 namespace {
 
 int fail(const std::string& message, int status) {
+  waitIfInterrupted();
   const bool prefixed = message.rfind("haif reel: ", 0) == 0;
   std::fprintf(stderr, "%s%s\n", prefixed ? "" : "haif reel: ", message.c_str());
   return status;
@@ -95,6 +97,7 @@ int commandReel(int argc, char** argv) {
       cl.get("--out", "output/" + std::filesystem::path(playlistPath).stem().string() + ".mp4");
   if (std::filesystem::path(out).extension() != ".mp4")
     return fail("--out: expected a .mp4 file, got '" + out + "'", 2);
+  if (!cl.has("--check") && !checkOutputFile(out, error)) return fail("--out: " + error, 2);
 
   ReelPlaylist p;
   if (!loadReelPlaylist(playlistPath, p, error)) return fail(error, 1);

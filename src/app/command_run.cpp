@@ -5,8 +5,10 @@
 #include "tools/atomic_file.h"
 #include "tools/frame_masks.h"
 #include "tools/progress.h"
+#include "tools/interrupts.h"
 #include "tools/run_report.h"
 #include "tools/simulation.h"
+#include "tools/staged_output.h"
 #include "tools/start_overlaps.h"
 #include "tools/video.h"
 
@@ -15,6 +17,8 @@
 #include "render/overlay.h"
 #include "render/run_charts.h"
 #endif
+
+#include "scene/scene_loader.h"
 
 #include <tbb/info.h>
 
@@ -27,6 +31,7 @@ namespace haif {
 namespace {
 
 int fail(const std::string& message, int status = 1) {
+  waitIfInterrupted();
   std::fprintf(stderr, "%s\n", message.c_str());
   return status;
 }
@@ -75,26 +80,37 @@ int commandRun(int argc, char** argv) {
   if (renderPhases && !render) return fail("haif run: --render-phases needs rendering (drop --no-render)", 2);
   const std::string video = cl.get("--video");
   if (!video.empty() && !render) return fail("haif run: --video needs rendering (drop --no-render)", 2);
+  // Every option is checked before anything is created.
+  const std::string view = cl.get("--view", "normal");
+  if (view != "normal" && view != "island" && view != "sleep" && view != "heat")
+    return fail("haif run: --view: expected normal, island, sleep or heat, got '" + view + "'", 2);
+  const std::string corner = cl.get("--overlay-corner", "tl");
+  if (corner != "tl" && corner != "tr" && corner != "bl" && corner != "br")
+    return fail("haif run: --overlay-corner: expected tl, tr, bl or br, got '" + corner + "'", 2);
+  if (!video.empty() && std::filesystem::path(video).extension() != ".mp4")
+    return fail("haif run: --video: expected a .mp4 file, got '" + video + "'", 2);
+  if (!video.empty() && !checkOutputFile(video, error)) return fail("haif run: --video: " + error, 2);
 
   Simulation sim;
   if (!makeSimulation(scenePath, spec, threads, sim, error)) return fail(error);
   World& world = *sim.world;
   if (frames < 0) frames = sim.scene.settings.frames;
+  if (!checkReplayLength(sim, spec, frames, error)) return fail(error);
   world.setSolveErrorInterval(errorEvery);
 
-  // Check the output folder before spending time on the simulation.
+  // Check the output folder before spending time on the simulation. It is written whole or not at
+  // all: into a temporary folder beside it, moved into place when the run is complete.
+  if (!cl.has("--out") && !sceneNameProblem(sim.scene.name).empty())
+    return fail("haif run: " + scenePath + ": scene name '" + sim.scene.name +
+                "' cannot name a folder under output/; give --out DIR");
   const std::string outDir = cl.get("--out", "output/" + sim.scene.name);
-  if (!ensureWritableDir(outDir, error)) return fail(error);
-  const std::string framesDir = outDir + "/frames";
-  if (render && !ensureWritableDir(framesDir, error)) return fail(error);
+  const std::vector<std::string> runMarkers = {"summary.json", "stats.csv", "frames"};
+  if (!checkOutputFolder(outDir, runMarkers, error)) return fail("haif run: " + error);
+  // A video inside the output folder is written into the temporary folder with the rest.
+  std::string videoInOut;
+  const bool videoInside = !video.empty() && isInside(video, outDir, videoInOut);
 
-  RunInfo info;
-  info.scene = sim.scene.name;
-  info.bodies = world.bodyCount();
-  info.threads = threads;
-  info.mode = sim.mode;
-  info.budgetMs = sim.mode == "fixed" ? 0.0 : budget;
-  info.iMin = world.controller().iMin;
+  RunInfo info = runInfoFor(sim, budget, threads);
 
   std::vector<StepStats> stats;
   RunMetrics metrics;
@@ -125,17 +141,13 @@ int commandRun(int argc, char** argv) {
     if (!renderer) return fail("haif run: renderer: " + error);
     if (!builder.registerMeshes(world, sim.scene, *renderer, error))
       return fail("haif run: " + scenePath + ": " + error);
-    const std::string view = cl.get("--view", "normal");
-    if (!parseViewMode(view, frame.mode))
-      return fail("haif run: --view: expected normal, island, sleep or heat, got '" + view + "'", 2);
+    parseViewMode(view, frame.mode);
     frame.showContacts = cl.has("--contacts");
     frame.overlay.enabled = !cl.has("--no-overlay");
-    const std::string corner = cl.get("--overlay-corner", "tl");
     if (corner == "tl") frame.overlay.corner = render::Corner::TopLeft;
     else if (corner == "tr") frame.overlay.corner = render::Corner::TopRight;
     else if (corner == "bl") frame.overlay.corner = render::Corner::BottomLeft;
-    else if (corner == "br") frame.overlay.corner = render::Corner::BottomRight;
-    else return fail("haif run: --overlay-corner: expected tl, tr, bl or br, got '" + corner + "'", 2);
+    else frame.overlay.corner = render::Corner::BottomRight;
     frame.overlay.scene = sim.scene.name;
     frame.overlay.mode = sim.mode;
     frame.overlay.bodies = int(world.bodyCount());
@@ -143,13 +155,21 @@ int commandRun(int argc, char** argv) {
     frame.overlay.iMax = float(std::min(world.controller().iMax, 1000));
     frame.overlay.budgetMs = float(info.budgetMs);
   }
+#endif
+  StagedFolder output;
+  if (!output.open(outDir, runMarkers, error)) return fail("haif run: " + error);
+  const std::string stage = output.path();
+  const std::string framesDir = stage + "/frames";
+  if (render && !ensureWritableDir(framesDir, error)) return fail("haif run: " + error);
+#ifdef HAIF_HAVE_RENDER
   // With --video the frames stream into ffmpeg as they are rendered (and are still written as PNGs).
   VideoEncoder encoder;
   const bool encoding = !video.empty() && ffmpegAvailable();
   if (!video.empty() && !encoding)
     std::fprintf(stderr, "haif run: ffmpeg not found on PATH (apt-get install ffmpeg): no %s; the frames are in %s\n",
-                 video.c_str(), framesDir.c_str());
-  if (encoding && !encoder.open(video, width, height, 60.0 / frameEvery, error)) return fail("haif run: " + error);
+                 video.c_str(), (outDir + "/frames").c_str());
+  const std::string videoPath = videoInside ? stage + "/" + videoInOut : video;
+  if (encoding && !encoder.open(videoPath, width, height, 60.0 / frameEvery, error)) return fail("haif run: " + error);
   // PNG encoding runs on one writer thread, overlapping the next steps and frames.
   std::unique_ptr<render::AsyncPngWriter> pngWriter;
   if (render) pngWriter = std::make_unique<render::AsyncPngWriter>();
@@ -202,8 +222,8 @@ int commandRun(int argc, char** argv) {
   if (!renderMs.empty()) info.renderMsPerFrameMedian = quantile(renderMs, 0.5);
   for (const auto& [name, ms] : phaseMs) info.renderPhaseMsMedian.emplace_back(name, quantile(ms, 0.5));
 
-  if (!writeFileAtomic(outDir + "/stats.csv", statsCsv(stats), error)) return fail(error);
-  if (!writeFileAtomic(outDir + "/summary.json", summaryJson(info, stats, metrics, world), error)) return fail(error);
+  if (!writeFileAtomic(stage + "/stats.csv", statsCsv(stats), error)) return fail(error);
+  if (!writeFileAtomic(stage + "/summary.json", summaryJson(info, stats, metrics, world), error)) return fail(error);
 
 #ifdef HAIF_HAVE_RENDER
   if (render) {
@@ -222,7 +242,7 @@ int commandRun(int argc, char** argv) {
       series.totalMs.push_back(float(s.totalMs));
       series.error.push_back(std::max(1e-9f, s.residual));
     }
-    const std::string chartsDir = outDir + "/charts";
+    const std::string chartsDir = stage + "/charts";
     if (!ensureWritableDir(chartsDir, error)) return fail(error);
     if (!render::writeRunCharts(chartsDir, series, render::RunChartOptions{}, &error))
       return fail("haif run: charts: " + error);
@@ -238,6 +258,10 @@ int commandRun(int argc, char** argv) {
     if (encoding && !encoder.finish(error)) return fail("haif run: " + error);
   }
 #endif
+  if (!output.commit(error)) {
+    if (!video.empty() && !videoInside) std::remove(video.c_str());  // no video of a run that is not there
+    return fail("haif run: " + error);
+  }
 
   std::vector<double> stepMs;
   for (const StepStats& s : stats) stepMs.push_back(s.totalMs);

@@ -4,6 +4,8 @@
 #include "app/commands.h"
 #include "scene/scene_loader.h"
 #include "tools/atomic_file.h"
+#include "tools/interrupts.h"
+#include "tools/staged_output.h"
 #include "tools/stress_suite.h"
 
 #include <tbb/info.h>
@@ -16,6 +18,7 @@ namespace haif {
 namespace {
 
 int fail(const std::string& message, int status) {
+  waitIfInterrupted();
   std::fprintf(stderr, "%s\n", message.c_str());
   return status;
 }
@@ -57,8 +60,9 @@ int commandStress(int argc, char** argv) {
       return fail(p + ": no \"stress\" block: a stress scene needs {\"steps\": N, \"checks\": [...]} (docs/stress.md)",
                   2);
   }
+  // Checked now, written at the end: the folder appears whole (tools/staged_output.h).
   const std::string outDir = cl.get("--out", "output/stress");
-  if (!ensureWritableDir(outDir, error)) return fail(error, 2);
+  if (!checkOutputFolder(outDir, {"stress.json"}, error)) return fail("haif stress: " + error, 2);
 
   std::vector<StressSceneResult> results;
   bool allPass = true;
@@ -70,7 +74,10 @@ int commandStress(int argc, char** argv) {
     allPass = allPass && (r.skipped || r.pass);
     results.push_back(std::move(r));
   }
-  if (!writeFileAtomic(outDir + "/stress.json", stressJson(results, quick), error)) return fail(error, 2);
+  StagedFolder output;
+  if (!output.open(outDir, {"stress.json"}, error) ||
+      !writeFileAtomic(output.path() + "/stress.json", stressJson(results, quick), error) || !output.commit(error))
+    return fail("haif stress: " + error, 2);
   int failed = 0, skipped = 0;
   for (const StressSceneResult& r : results) {
     if (r.skipped) ++skipped;

@@ -73,6 +73,11 @@ bool ComparisonClip::open(const std::string& scenePath, const std::string& leftS
   const int sceneFrames = std::max(1, side_[0]->sceneFrames() / std::max(1, opt_.frameEvery));
   frames_ = opt_.frames > 0 ? opt_.frames : sceneFrames;
   totalSteps_ = frames_ * std::max(1, opt_.frameEvery);
+  for (int i = 0; i < 2; ++i)
+    if (!checkStepsAvailable(*side_[i], totalSteps_, error)) {
+      error = std::string(kSideName[i]) + " side: " + error;
+      return false;
+    }
   emitted_ = 0;
   return true;
 }

@@ -1,8 +1,11 @@
 // haif: the command users run. Every task is a subcommand.
 #include "app/commands.h"
+#include "tools/interrupts.h"
 
 #include <cstdio>
 #include <cstring>
+#include <string>
+#include <utility>
 
 namespace {
 
@@ -54,14 +57,19 @@ int main(int argc, char** argv) {
     usage(stdout);
     return 0;
   }
-  if (!std::strcmp(cmd, "run")) return haif::commandRun(argc, argv);
-  if (!std::strcmp(cmd, "bench")) return haif::commandBench(argc, argv);
-  if (!std::strcmp(cmd, "calibrate")) return haif::commandCalibrate(argc, argv);
-  if (!std::strcmp(cmd, "diff")) return haif::commandDiff(argc, argv);
-  if (!std::strcmp(cmd, "compare")) return haif::commandCompare(argc, argv);
-  if (!std::strcmp(cmd, "reel")) return haif::commandReel(argc, argv);
-  if (!std::strcmp(cmd, "stress")) return haif::commandStress(argc, argv);
-  if (!std::strcmp(cmd, "assets")) return haif::commandAssets(argc, argv);
+  using Command = int (*)(int, char**);
+  const std::pair<const char*, Command> commands[] = {
+      {"run", haif::commandRun},         {"bench", haif::commandBench},   {"calibrate", haif::commandCalibrate},
+      {"diff", haif::commandDiff},       {"compare", haif::commandCompare}, {"reel", haif::commandReel},
+      {"stress", haif::commandStress},   {"assets", haif::commandAssets}};
+  for (const auto& [name, command] : commands) {
+    if (std::strcmp(cmd, name) != 0) continue;
+    // Before any thread starts: every thread inherits the blocked SIGINT and SIGTERM.
+    haif::installInterruptHandler(std::string("haif ") + name);
+    const int status = command(argc, argv);
+    haif::waitIfInterrupted();  // an interrupted command ends with the handler's line and status
+    return status;
+  }
   std::fprintf(stderr, "haif: unknown command '%s' (see 'haif help')\n", cmd);
   return 2;
 }

@@ -4,12 +4,9 @@
 #include "scene/json_positions.h"
 #include "scene/json_reader.h"
 #include "scene/scene_loader.h"
+#include "scene/text_file.h"
 
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 namespace haif {
 
@@ -104,18 +101,21 @@ void parseDocument(const JsonNode& root, const std::string& baseDir, ReelPlaylis
 }  // namespace
 
 bool loadReelPlaylist(const std::string& path, ReelPlaylist& out, std::string& error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    error = path + ": cannot open playlist (" + std::strerror(errno) + ")";
-    return false;
-  }
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  const std::string text = ss.str();
+  std::string text;
+  if (!readTextFile(path, "playlist", text, error)) return false;
+  return parseReelPlaylistText(text, path, out, error);
+}
+
+bool parseReelPlaylistText(const std::string& text, const std::string& path, ReelPlaylist& out, std::string& error) {
   auto at = [&](size_t offset) {
     const TextLocation loc = locationOfOffset(text, offset);
     return path + ":" + std::to_string(loc.line) + ":" + std::to_string(loc.column) + ": ";
   };
+  const size_t deep = findTooDeepNesting(text);
+  if (deep != std::string::npos) {
+    error = at(deep) + "syntax error: nested deeper than " + std::to_string(kMaxJsonDepth) + " levels of [ and {";
+    return false;
+  }
   Json doc;
   try {
     doc = Json::parse(text);

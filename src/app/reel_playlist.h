@@ -37,4 +37,8 @@ struct ReelPlaylist {
 /// mistake is reported before any rendering. One error line "FILE:LINE:COL: PLACE: what is wrong".
 bool loadReelPlaylist(const std::string& path, ReelPlaylist& out, std::string& error);
 
+/// Same for playlist text already in memory; `path` names it in errors and scene paths are relative
+/// to its folder.
+bool parseReelPlaylistText(const std::string& text, const std::string& path, ReelPlaylist& out, std::string& error);
+
 }  // namespace haif

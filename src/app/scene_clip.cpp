@@ -9,7 +9,7 @@ bool SceneClip::open(const std::string& scenePath, const std::string& spec, cons
                      std::string& error) {
   opt_ = options;
   scene_ = makeSimulatedScene(scenePath, spec, opt_.threads, error);
-  if (!scene_) return false;
+  if (!scene_ || !checkStepsAvailable(*scene_, opt_.frames * opt_.frameEvery, error)) return false;
   render::RendererOptions ro;
   ro.width = opt_.width;
   ro.height = opt_.height;

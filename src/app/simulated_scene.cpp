@@ -87,6 +87,7 @@ class HaifScene : public SimulatedScene {
   float budgetMs() const override { return budgetMs_; }
   float iMin() const override { return iMin_; }
   float iMax() const override { return iMax_; }
+  int stepsAvailable() const override { return sim_.replaySteps; }
 
   bool prepare(render::Renderer& renderer, std::string& error) override {
     return builder_.registerMeshes(*sim_.world, sim_.scene, renderer, error);
@@ -135,6 +136,14 @@ class HaifScene : public SimulatedScene {
 };
 
 }  // namespace
+
+bool checkStepsAvailable(const SimulatedScene& scene, int steps, std::string& error) {
+  const int available = scene.stepsAvailable();
+  if (available < 0 || steps <= available) return true;
+  error = scene.spec() + ": the log holds " + std::to_string(available) + " steps, fewer than the " +
+          std::to_string(steps) + " to show";
+  return false;
+}
 
 std::unique_ptr<SimulatedScene> makeSimulatedScene(const std::string& scenePath, const std::string& spec, int threads,
                                                    std::string& error) {

@@ -45,6 +45,8 @@ class SimulatedScene {
   virtual float budgetMs() const = 0;
   virtual float iMin() const = 0;
   virtual float iMax() const = 0;
+  /// Steps this set-up can run: a replay, the steps its log holds; -1: any number.
+  virtual int stepsAvailable() const { return -1; }
 
   /// Uploads the scene's meshes to `renderer` (once, before the first frame).
   virtual bool prepare(render::Renderer& renderer, std::string& error) = 0;
@@ -64,6 +66,9 @@ std::unique_ptr<SimulatedScene> makeBulletScene(const std::string& scenePath, in
 
 /// The set-up `spec` on the scene file `scenePath`. Specs: fixed:N, adaptive:MS, model:MS, replay:STATS.csv
 /// and bullet:N (only in builds with the Bullet adapter: otherwise a clear error). One error line on failure.
+/// False with one error line naming the set-up when it cannot run `steps` steps (a short replay log).
+bool checkStepsAvailable(const SimulatedScene& scene, int steps, std::string& error);
+
 std::unique_ptr<SimulatedScene> makeSimulatedScene(const std::string& scenePath, const std::string& spec, int threads,
                                                    std::string& error);
 

@@ -117,12 +117,44 @@ bool beginRead(const std::string& path, png_image& image, std::string* error) {
 }  // namespace
 
 bool readPng(const std::string& path, int* w, int* h, std::vector<uint8_t>* rgba, std::string* error) {
+  FILE* file = std::fopen(path.c_str(), "rb");
+  if (!file) {
+    if (error) *error = "cannot read PNG '" + path + "': " + std::strerror(errno);
+    return false;
+  }
+  std::vector<uint8_t> bytes;
+  uint8_t buffer[1 << 16];
+  for (size_t n; (n = std::fread(buffer, 1, sizeof buffer, file)) > 0;) bytes.insert(bytes.end(), buffer, buffer + n);
+  const bool failed = std::ferror(file) != 0;
+  std::fclose(file);
+  if (failed) {
+    if (error) *error = "cannot read PNG '" + path + "': read error";
+    return false;
+  }
+  return decodePng(bytes.data(), bytes.size(), path, w, h, rgba, error);
+}
+
+bool decodePng(const uint8_t* data, size_t size, const std::string& name, int* w, int* h, std::vector<uint8_t>* rgba,
+               std::string* error, uint64_t maxPixels) {
   png_image image;
-  if (!beginRead(path, image, error)) return false;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_memory(&image, data, size)) {
+    if (error) *error = "cannot read PNG '" + name + "': " + image.message;
+    png_image_free(&image);
+    return false;
+  }
+  if (uint64_t(image.width) * image.height > maxPixels) {
+    if (error)
+      *error = "cannot read PNG '" + name + "': " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+               " pixels is larger than " + std::to_string(maxPixels) + " pixels";
+    png_image_free(&image);
+    return false;
+  }
   image.format = PNG_FORMAT_RGBA;
   rgba->resize(PNG_IMAGE_SIZE(image));
   if (!png_image_finish_read(&image, nullptr, rgba->data(), 0, nullptr)) {
-    if (error) *error = "cannot decode PNG '" + path + "': " + image.message;
+    if (error) *error = "cannot decode PNG '" + name + "': " + image.message;
     png_image_free(&image);
     return false;
   }

@@ -48,19 +48,42 @@ size_t JsonPositions::skipString(size_t pos) const {
   return pos + 1;
 }
 
+size_t findTooDeepNesting(const std::string& text, int maxDepth) {
+  int depth = 0;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '"') {  // brackets inside strings do not nest
+      ++i;
+      while (i < text.size() && text[i] != '"') i += (text[i] == '\\') ? 2 : 1;
+    } else if (c == '[' || c == '{') {
+      if (++depth > maxDepth) return i;
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return std::string::npos;
+}
+
 bool JsonPositions::scan(const std::string& text, std::string& duplicateKeyPointer) {
   text_ = &text;
   entries_.clear();
   duplicateKeyPointer.clear();
-  scanValue(skipSpace(0), "", duplicateKeyPointer);
-  return duplicateKeyPointer.empty();
+  // Checked before the recursive walk, which would otherwise run out of stack.
+  tooDeep_ = findTooDeepNesting(text);
+  if (tooDeep_ != std::string::npos) return false;
+  scanValue(skipSpace(0), "", duplicateKeyPointer, 0);
+  return duplicateKeyPointer.empty() && tooDeep_ == std::string::npos;
 }
 
-size_t JsonPositions::scanValue(size_t pos, const std::string& pointer, std::string& dup) {
+size_t JsonPositions::scanValue(size_t pos, const std::string& pointer, std::string& dup, int depth) {
   const std::string& t = *text_;
   entries_[pointer].value = pos;
   if (pos >= t.size()) return pos;
   const char c = t[pos];
+  if ((c == '{' || c == '[') && depth >= kMaxJsonDepth) {  // unreachable after the check in scan()
+    if (tooDeep_ == std::string::npos) tooDeep_ = pos;
+    return t.size();
+  }
   if (c == '{') {
     pos = skipSpace(pos + 1);
     if (pos < t.size() && t[pos] == '}') return pos + 1;
@@ -76,7 +99,7 @@ size_t JsonPositions::scanValue(size_t pos, const std::string& pointer, std::str
       e.key = keyStart;
       pos = skipSpace(keyEnd);
       pos = skipSpace(pos + 1);  // ':'
-      pos = skipSpace(scanValue(pos, child, dup));
+      pos = skipSpace(scanValue(pos, child, dup, depth + 1));
       if (pos < t.size() && t[pos] == ',') {
         pos = skipSpace(pos + 1);
         continue;
@@ -89,7 +112,7 @@ size_t JsonPositions::scanValue(size_t pos, const std::string& pointer, std::str
     pos = skipSpace(pos + 1);
     if (pos < t.size() && t[pos] == ']') return pos + 1;
     for (size_t index = 0; pos < t.size(); ++index) {
-      pos = skipSpace(scanValue(pos, pointer + "/" + std::to_string(index), dup));
+      pos = skipSpace(scanValue(pos, pointer + "/" + std::to_string(index), dup, depth + 1));
       if (pos < t.size() && t[pos] == ',') {
         pos = skipSpace(pos + 1);
         continue;

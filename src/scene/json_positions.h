@@ -21,11 +21,22 @@ TextLocation locationOfOffset(const std::string& text, size_t offset);
 /// Escape one object key or array index as a JSON pointer reference token (RFC 6901: ~ -> ~0, / -> ~1).
 std::string jsonPointerToken(const std::string& key);
 
+/// How deep a JSON text may nest arrays and objects. Scene files and playlists nest a few levels;
+/// anything walked recursively (the scanner below, nlohmann's dump() in messages) would overflow the
+/// stack on a text of 20,000 '[', so deeper texts are refused before they are walked.
+constexpr int kMaxJsonDepth = 256;
+
+/// Offset of the first '[' or '{' (outside strings) that opens level `maxDepth` + 1, or npos.
+size_t findTooDeepNesting(const std::string& text, int maxDepth = kMaxJsonDepth);
+
 class JsonPositions {
  public:
   /// Scans `text`, which must be valid JSON. Returns false and sets `duplicateKeyPointer` when an
-  /// object repeats a key (nlohmann would silently keep the last one, hiding a mistake).
+  /// object repeats a key (nlohmann would silently keep the last one, hiding a mistake), or, with
+  /// `duplicateKeyPointer` empty, when the text nests deeper than kMaxJsonDepth (tooDeepOffset()).
   bool scan(const std::string& text, std::string& duplicateKeyPointer);
+  /// Where the text first nests too deep (npos when it does not).
+  size_t tooDeepOffset() const { return tooDeep_; }
 
   /// Byte offset of the value at `pointer` ("" is the root); npos if unknown.
   size_t valueOffset(const std::string& pointer) const;
@@ -39,11 +50,12 @@ class JsonPositions {
     size_t value = std::string::npos;
     size_t key = std::string::npos;
   };
-  size_t scanValue(size_t pos, const std::string& pointer, std::string& dup);
+  size_t scanValue(size_t pos, const std::string& pointer, std::string& dup, int depth);
   size_t skipString(size_t pos) const;  ///< pos at the opening quote; returns one past the closing quote
   size_t skipSpace(size_t pos) const;
 
   const std::string* text_ = nullptr;
+  size_t tooDeep_ = std::string::npos;
   std::unordered_map<std::string, Entry> entries_;
 };
 

@@ -179,7 +179,12 @@ Vec3 readVec3OrScalar(const JsonNode& node) {
 
 float readPositive(const JsonNode& node) {
   const float f = readFloat(node);
-  if (!(f > 0.0f)) fail(node, "must be > 0 (got " + formatNumber(f) + ")");
+  if (!(f > 0.0f)) {
+    // The value as written: 1e-300 is > 0 as a double and rounds to 0 as a float.
+    const double d = readNumber(node);
+    fail(node, d > 0.0 ? "must be > 0 (got " + formatNumber(d) + ", which is 0 in the engine's 32-bit floats)"
+                       : "must be > 0 (got " + formatNumber(d) + ")");
+  }
   return f;
 }
 

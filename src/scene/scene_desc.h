@@ -112,6 +112,9 @@ struct CameraDesc {
 struct SceneDesc {
   std::string name;        ///< scene name (file stem unless the file says otherwise)
   std::string sourcePath;  ///< file it was read from
+  /// FNV-1a of the file's bytes: a run records it, and replaying the run's log checks it (a log
+  /// of another scene, or of an edited one, would replay iteration counts that mean nothing).
+  uint64_t sourceHash = 0;
   SimSettings settings;
   std::vector<MaterialDesc> materials;  ///< materials[0] always exists ("default")
   std::vector<BodyDesc> bodies;

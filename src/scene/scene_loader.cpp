@@ -7,11 +7,7 @@
 #include "scene/json_reader.h"
 #include "scene/scene_validate.h"
 #include "scene/stress_parse.h"
-
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-#include <sstream>
+#include "scene/text_file.h"
 
 namespace haif {
 
@@ -148,7 +144,11 @@ void parseDocument(const JsonNode& root, ParseContext& ctx, SceneDesc& scene) {
   if (!root.json().is_object()) fail(root, "a scene file must hold one JSON object {...} (got " + describeValue(root.json()) + ")");
   checkKeys(root, {"name", "description", "settings", "materials", "camera", "bodies", "water", "generators", "joints",
                   "stress"});
-  if (root.member("name").present()) scene.name = readString(root.member("name"));
+  if (root.member("name").present()) {
+    scene.name = readString(root.member("name"));
+    const std::string problem = sceneNameProblem(scene.name);
+    if (!problem.empty()) fail(root.member("name"), problem);
+  }
   if (root.member("description").present()) readString(root.member("description"));
   if (root.member("settings").present()) parseSettings(root.member("settings"), scene.settings);
   ctx.materials.assign(1, MaterialDesc{});
@@ -201,6 +201,12 @@ std::string issuePointer(const SceneIssue& issue, const ParseContext& ctx) {
 }  // namespace
 
 bool parseSceneText(const std::string& text, const std::string& pathForMessages, SceneDesc& out, std::string& error) {
+  const size_t deep = findTooDeepNesting(text);
+  if (deep != std::string::npos) {
+    error = formatError(pathForMessages, text, deep, "syntax error",
+                        "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels of [ and {");
+    return false;
+  }
   Json doc;
   try {
     doc = Json::parse(text);
@@ -227,6 +233,8 @@ bool parseSceneText(const std::string& text, const std::string& pathForMessages,
 
   SceneDesc scene;
   scene.sourcePath = pathForMessages;
+  scene.sourceHash = 0xcbf29ce484222325ull;  // FNV-1a, 64 bits
+  for (const char c : text) scene.sourceHash = (scene.sourceHash ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
   scene.name = stemOf(pathForMessages);
   ParseContext ctx;
   ctx.sceneDir = directoryOf(pathForMessages);
@@ -252,18 +260,19 @@ bool parseSceneText(const std::string& text, const std::string& pathForMessages,
 }
 
 bool loadSceneFile(const std::string& path, SceneDesc& out, std::string& error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    error = path + ": cannot open scene file (" + std::strerror(errno) + ")";
-    return false;
-  }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) {
-    error = path + ": cannot read scene file (" + std::strerror(errno) + ")";
-    return false;
-  }
-  return parseSceneText(text.str(), path, out, error);
+  std::string text;
+  if (!readTextFile(path, "scene file", text, error)) return false;
+  return parseSceneText(text, path, out, error);
+}
+
+std::string sceneNameProblem(const std::string& name) {
+  const std::string why = " (the name is the default output folder, output/<name>)";
+  if (name.empty()) return "must not be empty" + why;
+  if (name == "." || name == ".." || name.find_first_of("/\\") != std::string::npos)
+    return "must be a plain name, not a path (got '" + name + "')" + why;
+  for (const char c : name)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return "must not hold control characters" + why;
+  return "";
 }
 
 }  // namespace haif

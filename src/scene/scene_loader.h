@@ -15,4 +15,8 @@ bool loadSceneFile(const std::string& path, SceneDesc& out, std::string& error);
 /// scene name (its stem) and the directory that asset paths are relative to.
 bool parseSceneText(const std::string& text, const std::string& pathForMessages, SceneDesc& out, std::string& error);
 
+/// Empty when `name` may name a scene (and its default output folder output/<name>); else why not.
+/// A name is one plain file name: not empty, not "." or "..", no '/' or '\\', no control characters.
+std::string sceneNameProblem(const std::string& name);
+
 }  // namespace haif

@@ -50,6 +50,18 @@ std::string hullPointsProblem(const std::vector<Vec3>& points) {
   return "";
 }
 
+bool hasTriangleWithArea(const std::vector<Vec3>& vertices, const std::vector<uint32_t>& indices) {
+  for (size_t t = 0; t + 2 < indices.size(); t += 3) {
+    if (indices[t] >= vertices.size() || indices[t + 1] >= vertices.size() || indices[t + 2] >= vertices.size())
+      continue;
+    const Vec3 a = vertices[indices[t]], e1 = vertices[indices[t + 1]] - a, e2 = vertices[indices[t + 2]] - a;
+    // Relative to the edges: collinear points give a cross product of rounding size only.
+    const float area2 = e1.cross(e2).norm();
+    if (area2 > 0.0f && area2 > 1e-6f * e1.norm() * e2.norm()) return true;
+  }
+  return false;
+}
+
 float shapeExtent(const ShapeDesc& s) {
   switch (s.type) {
     case ShapeType::Sphere: return 2.0f * s.radius;
@@ -139,7 +151,11 @@ bool checkShape(Checker& c, const ShapeDesc& s, MotionType motion) {
       for (uint32_t i : s.meshIndices)
         if (i >= s.meshVertices.size())
           return c.bad("shape.indices", "index " + std::to_string(i) + " is out of range (" + std::to_string(s.meshVertices.size()) + " vertices)");
-      return true;
+      // Inline or from an asset, a mesh of only zero-area triangles has no surface to collide with.
+      return hasTriangleWithArea(s.meshVertices, s.meshIndices) ||
+             c.bad(s.asset.empty() ? "shape.indices" : "shape.asset",
+                   "all " + std::to_string(s.meshIndices.size() / 3) +
+                       " triangles are degenerate (zero area): a mesh needs at least one with area");
     }
     case ShapeType::Plane:
       if (!c.finiteVec("shape.normal", s.planeNormal) || !c.isFiniteNum("shape.offset", s.planeOffset)) return false;
@@ -152,6 +168,16 @@ bool checkBody(Checker& c, const SceneDesc& scene, const BodyDesc& b) {
   if (!c.finiteVec("position", b.position) || !c.finiteVec("velocity", b.linearVelocity) ||
       !c.finiteVec("angular_velocity", b.angularVelocity))
     return false;
+  // In double: the float square of 1e20 overflows, and the message would say "inf".
+  const double speed = b.linearVelocity.cast<double>().norm(), spin = b.angularVelocity.cast<double>().norm();
+  if (!(speed <= kMaxBodySpeed))
+    return c.bad("velocity", "a speed of " + formatNumber(speed) +
+                                 " m/s is outside the speeds the engine supports (up to " + formatNumber(kMaxBodySpeed) +
+                                 " m/s)");
+  if (!(spin <= kMaxBodySpin))
+    return c.bad("angular_velocity", "a spin of " + formatNumber(spin) +
+                                         " rad/s is outside the spins the engine supports (up to " +
+                                         formatNumber(kMaxBodySpin) + " rad/s)");
   const float qn = b.orientation.norm();
   if (!std::isfinite(qn) || std::fabs(qn - 1.0f) > 1e-3f)
     return c.bad("orientation", "must be a unit quaternion (norm " + formatNumber(qn) + ")");

@@ -35,6 +35,9 @@ bool validateScene(const SceneDesc& scene, SceneIssue& issue);
 /// True for shapes only a static body may have (planes, triangle meshes).
 bool isStaticOnlyShape(ShapeType t);
 
+/// True when at least one triangle of the mesh has an area (its corners are not on one line).
+bool hasTriangleWithArea(const std::vector<Vec3>& vertices, const std::vector<uint32_t>& indices);
+
 /// Empty when the points span a volume; else why not (fewer than 4, or all on one plane/line).
 std::string hullPointsProblem(const std::vector<Vec3>& points);
 

@@ -1,11 +1,13 @@
 #include "tools/run_report.h"
 
+#include "scene/text_file.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <filesystem>
 #include <sstream>
 
 namespace haif {
@@ -82,11 +84,13 @@ std::string summaryJson(const RunInfo& info, const std::vector<StepStats>& steps
   const double n = steps.empty() ? 1.0 : double(steps.size());
   nlohmann::ordered_json j;
   j["scene"] = info.scene;
+  j["scene_hash"] = hashText(info.sceneHash);
   j["bodies"] = info.bodies;
   j["steps"] = steps.size();
   j["threads"] = info.threads;
   j["mode"] = info.mode;
   j["budget_ms"] = info.budgetMs;
+  j["residual_tolerance"] = info.residualTolerance;
   j["ms_per_step_median"] = quantile(ms, 0.5);
   j["ms_per_step_p95"] = quantile(ms, 0.95);
   j["ms_per_step_p99"] = quantile(ms, 0.99);
@@ -134,9 +138,7 @@ std::string summaryJson(const RunInfo& info, const std::vector<StepStats>& steps
   j["speed_limited_steps"] = limitedSteps;
   j["pinched_steps"] = pinchedSteps;
   j["pinched_max"] = pinchedMax;
-  char hash[32];
-  std::snprintf(hash, sizeof hash, "%016llx", (unsigned long long)info.stateHash);
-  j["state_hash"] = hash;
+  j["state_hash"] = hashText(info.stateHash);
   if (info.renderMsPerFrameMedian >= 0) j["render_ms_per_frame_median"] = info.renderMsPerFrameMedian;
   if (!info.renderPhaseMsMedian.empty()) {
     nlohmann::ordered_json phases = nlohmann::ordered_json::object();
@@ -146,12 +148,16 @@ std::string summaryJson(const RunInfo& info, const std::vector<StepStats>& steps
   return j.dump(2) + "\n";
 }
 
+std::string hashText(uint64_t hash) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%016llx", (unsigned long long)hash);
+  return text;
+}
+
 bool readChosenIterations(const std::string& path, std::vector<int>& out, std::string& error) {
-  std::ifstream in(path);
-  if (!in) {
-    error = path + ": cannot open replay log";
-    return false;
-  }
+  std::string text;
+  if (!readTextFile(path, "replay log", text, error)) return false;
+  std::istringstream in(text);
   std::string line;
   if (!std::getline(in, line)) {
     error = path + ":1: empty replay log";
@@ -178,6 +184,46 @@ bool readChosenIterations(const std::string& path, std::vector<int>& out, std::s
     }
     out.push_back(int(v));
   }
+  return true;
+}
+
+bool readReplayLog(const std::string& statsPath, ReplayLog& out, std::string& error) {
+  ReplayLog log;
+  if (!readChosenIterations(statsPath, log.iterations, error)) return false;
+  const std::string path = (std::filesystem::path(statsPath).parent_path() / "summary.json").string();
+  std::string text;
+  if (!readTextFile(path, "run summary", text, error)) {
+    error += ": replay reads the run's summary.json beside its stats.csv";
+    return false;
+  }
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) {
+    error = path + ": not a HAIF summary.json (no JSON object)";
+    return false;
+  }
+  const auto hash = j.find("scene_hash");
+  if (hash == j.end() || !hash->is_string() || hash->get<std::string>().size() != 16) {
+    error = path + ": no scene_hash (written by an older haif?): run the scene again to replay it";
+    return false;
+  }
+  log.sceneHash = hash->get<std::string>();
+  const auto scene = j.find("scene");
+  if (scene != j.end() && scene->is_string()) log.scene = scene->get<std::string>();
+  const auto tol = j.find("residual_tolerance");
+  if (tol == j.end() || !tol->is_number() || !(tol->get<double>() >= 0.0) || !(tol->get<double>() < 1e30)) {
+    error = path + ": residual_tolerance: expected a number >= 0 (the run's early-stopping rule)";
+    return false;
+  }
+  log.residualTolerance = tol->get<float>();
+  const auto iMin = j.find("i_min");
+  if (iMin != j.end()) {
+    if (!iMin->is_number_integer() || iMin->get<int64_t>() < 1 || iMin->get<int64_t>() > 100000) {
+      error = path + ": i_min: expected an integer in [1, 100000]";
+      return false;
+    }
+    log.iMin = int(iMin->get<int64_t>());
+  }
+  out = std::move(log);
   return true;
 }
 

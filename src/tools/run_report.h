@@ -12,6 +12,8 @@ namespace haif {
 
 struct RunInfo {
   std::string scene;
+  uint64_t sceneHash = 0;         ///< SceneDesc::sourceHash: replay checks that its log is of this scene
+  float residualTolerance = 0.f;  ///< the early-stopping rule of the run (0: none), for replay
   uint32_t bodies = 0;
   int threads = 1;
   std::string mode;
@@ -35,5 +37,22 @@ std::string summaryJson(const RunInfo& info, const std::vector<StepStats>& steps
 
 /// Reads the `iterations_chosen` column of a stats.csv written by statsCsv (for replay mode).
 bool readChosenIterations(const std::string& path, std::vector<int>& out, std::string& error);
+
+/// What replay mode reads back from a run: the iteration count of each step (its stats.csv) and,
+/// from the summary.json beside it, the scene it ran and its early-stopping rule, without which a
+/// replay of a fixed run (no early stop) stopped converged islands early and ran fewer sweeps.
+struct ReplayLog {
+  std::vector<int> iterations;
+  std::string scene;             ///< the run's scene name (for messages)
+  std::string sceneHash;         ///< summary.json "scene_hash", 16 hex digits
+  float residualTolerance = 0.f; ///< islands stopped below this correction (0: never)
+  int iMin = 1;                  ///< ... but not before this many sweeps
+};
+
+/// Reads RUN/stats.csv (`statsPath`) and RUN/summary.json. One error line naming the file on failure.
+bool readReplayLog(const std::string& statsPath, ReplayLog& out, std::string& error);
+
+/// A 64-bit hash as summary.json writes it (16 hex digits).
+std::string hashText(uint64_t hash);
 
 }  // namespace haif

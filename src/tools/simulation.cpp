@@ -67,19 +67,47 @@ bool makeSimulation(const std::string& scenePath, const SolverSpec& spec, int th
     w.settings().residualTolerance = spec.residualTolerance;
     w.setController(std::make_unique<AdaptiveController>(model, as, spec.mode == "adaptive"));
   } else if (spec.mode == "replay") {
-    std::vector<int> counts;
-    if (!readChosenIterations(spec.replayPath, counts, error)) return false;
-    // Replay reproduces the recorded run: same counts and the same early-stopping rule.
-    w.settings().residualTolerance = spec.residualTolerance;
+    ReplayLog log;
+    if (!readReplayLog(spec.replayPath, log, error)) return false;
+    if (log.sceneHash != hashText(sim.scene.sourceHash)) {
+      error = spec.replayPath + ": a log of scene '" + log.scene + "' (scene_hash " + log.sceneHash + "), not of " +
+              scenePath + " (scene_hash " + hashText(sim.scene.sourceHash) + "): replay a run of this scene file";
+      return false;
+    }
+    // Replay reproduces the recorded run: its counts and its early-stopping rule, none in a fixed
+    // run (a replay that stopped converged islands early ran 4 sweeps where the run had run 10).
+    w.settings().residualTolerance = log.residualTolerance;
     w.settings().budgetMs = spec.budgetMs;
-    auto c = std::make_unique<ReplayController>(std::move(counts));
-    c->iMin = spec.iMin;
+    sim.replaySteps = int(log.iterations.size());
+    auto c = std::make_unique<ReplayController>(std::move(log.iterations));
+    c->iMin = log.iMin;
     w.setController(std::move(c));
   } else {
     error = "unknown mode '" + spec.mode + "' (fixed, adaptive, model, replay)";
     return false;
   }
   return true;
+}
+
+RunInfo runInfoFor(const Simulation& sim, double budgetMs, int threads) {
+  World& w = *sim.world;  // controller() has no const overload
+  RunInfo info;
+  info.scene = sim.scene.name;
+  info.sceneHash = sim.scene.sourceHash;
+  info.bodies = w.bodyCount();
+  info.threads = threads;
+  info.mode = sim.mode;
+  info.budgetMs = sim.mode == "fixed" ? 0.0 : budgetMs;
+  info.iMin = w.controller().iMin;
+  info.residualTolerance = w.settings().residualTolerance;
+  return info;
+}
+
+bool checkReplayLength(const Simulation& sim, const SolverSpec& spec, int steps, std::string& error) {
+  if (sim.replaySteps < 0 || steps <= sim.replaySteps) return true;
+  error = spec.replayPath + ": the log holds " + std::to_string(sim.replaySteps) + " steps, fewer than the " +
+          std::to_string(steps) + " to run: run at most " + std::to_string(sim.replaySteps) + " (--frames)";
+  return false;
 }
 
 bool runSteps(Simulation& sim, int steps, std::vector<StepStats>& stats, RunMetrics& metrics,

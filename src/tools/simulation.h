@@ -4,6 +4,7 @@
 #include "haif/world.h"
 #include "scene/scene_desc.h"
 #include "tools/run_metrics.h"
+#include "tools/run_report.h"
 
 #include <functional>
 #include <memory>
@@ -30,7 +31,15 @@ struct Simulation {
   SceneDesc scene;
   std::unique_ptr<World> world;
   std::string mode;
+  int replaySteps = -1;  ///< replay: the steps its log holds (it cannot run more); -1: any number
 };
+
+/// What summary.json says of the run besides its steps: scene, scene hash, mode, budget (none in
+/// fixed mode), threads and the early-stopping rule that replay reproduces.
+RunInfo runInfoFor(const Simulation& sim, double budgetMs, int threads);
+
+/// False with one error line when `steps` is more than a replay's log holds.
+bool checkReplayLength(const Simulation& sim, const SolverSpec& spec, int steps, std::string& error);
 
 /// Loads the scene, builds its world and installs the controller. One error line on failure.
 bool makeSimulation(const std::string& scenePath, const SolverSpec& spec, int threads, Simulation& sim,

@@ -1,7 +1,9 @@
 #include "tools/video.h"
 
 #include "render/png_io.h"
+#include "tools/frame_masks.h"
 #include "tools/atomic_file.h"
+#include "tools/interrupts.h"
 
 #include <cerrno>
 #include <csignal>
@@ -44,6 +46,7 @@ bool VideoEncoder::open(const std::string& outPath, int width, int height, doubl
                                    out.extension().string()))
                  .string();
   outPath_ = outPath;
+  registerTemporary(tmpPath_);
   frameBytes_ = size_t(width) * size_t(height) * 4;
   frames_ = 0;
 
@@ -76,6 +79,10 @@ bool VideoEncoder::open(const std::string& outPath, int width, int height, doubl
   if (pid_ == 0) {
     // -nostdin only stops ffmpeg reading keys; the frames come in on fd 0 as pipe:0.
     ::dup2(fds[0], 0);
+    // Ctrl-C reaches haif alone, which stops ffmpeg itself and removes its unfinished video
+    // (tools/interrupts.h); haif blocks the signals, and ffmpeg must not inherit that.
+    ::setpgid(0, 0);
+    unblockInterruptsInChild();
     // Encoding is background work: at the lowest priority it waits for the simulation, whose
     // budgeted steps it otherwise preempted.
     if (::nice(19) == -1) { /* still encodes, at normal priority */ }
@@ -84,6 +91,7 @@ bool VideoEncoder::open(const std::string& outPath, int width, int height, doubl
   }
   ::close(fds[0]);
   fd_ = fds[1];
+  registerChild(pid_);
   return true;
 }
 
@@ -118,6 +126,7 @@ bool VideoEncoder::waitForExit(std::string& error) {
   pid_t r;
   do r = ::waitpid(pid_, &status, 0);
   while (r < 0 && errno == EINTR);
+  releaseChild(pid_);
   pid_ = -1;
   if (r < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     const int code = r >= 0 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -149,6 +158,7 @@ bool VideoEncoder::finish(std::string& error) {
     abort();
     return false;
   }
+  releaseTemporary(tmpPath_);
   tmpPath_.clear();
   return true;
 }
@@ -161,14 +171,18 @@ void VideoEncoder::abort() {
     int status = 0;
     while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {
     }
+    releaseChild(pid_);
     pid_ = -1;
   }
-  if (!tmpPath_.empty()) std::remove(tmpPath_.c_str());
+  if (!tmpPath_.empty()) {
+    std::remove(tmpPath_.c_str());
+    releaseTemporary(tmpPath_);
+  }
   tmpPath_.clear();
 }
 
 bool PngFrameSink::open(const std::string& dir, int width, int height, std::string& error) {
-  if (!ensureWritableDir(dir, error)) return false;
+  if (!folder_.open(dir, {"frame_00000.png", kFrameMasksFile}, error)) return false;
   dir_ = dir;
   width_ = width;
   height_ = height;
@@ -179,7 +193,7 @@ bool PngFrameSink::open(const std::string& dir, int width, int height, std::stri
 bool PngFrameSink::write(const uint8_t* rgba, std::string& error) {
   char name[32];
   std::snprintf(name, sizeof name, "/frame_%05d.png", frames_);
-  if (!render::writePng(dir_ + name, width_, height_, rgba, &error)) return false;
+  if (!render::writePng(folder_.path() + name, width_, height_, rgba, &error)) return false;
   ++frames_;
   return true;
 }

@@ -4,6 +4,8 @@
 // to PNG files instead.
 #pragma once
 
+#include "tools/staged_output.h"
+
 #include <sys/types.h>
 
 #include <cstdint>
@@ -48,15 +50,19 @@ class VideoEncoder : public FrameSink {
   int frames_ = 0;
 };
 
-/// PNG files dir/frame_00000.png, ... (the fallback without ffmpeg).
+/// PNG files dir/frame_00000.png, ... (the fallback without ffmpeg), written into a temporary
+/// folder that finish() moves into place (tools/staged_output.h).
 class PngFrameSink : public FrameSink {
  public:
   bool open(const std::string& dir, int width, int height, std::string& error);
   bool write(const uint8_t* rgba, std::string& error) override;
-  bool finish(std::string&) override { return true; }
+  bool finish(std::string& error) override { return folder_.commit(error); }
   std::string where() const override { return dir_; }
+  /// Where files beside the frames go until finish() (masks.json).
+  const std::string& stagingDir() const { return folder_.path(); }
 
  private:
+  StagedFolder folder_;
   std::string dir_;
   int width_ = 0, height_ = 0, frames_ = 0;
 };

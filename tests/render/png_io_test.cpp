@@ -1,7 +1,11 @@
 // PNG writing/reading: exact round trip, atomic write, clear errors.
 #include <gtest/gtest.h>
 
+#include <zlib.h>
+
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "render/png_io.h"
 #include "render_test_util.h"
@@ -72,6 +76,37 @@ TEST(PngIo, ReadingAMissingFileFails) {
   std::string error;
   EXPECT_FALSE(readPng(test::tempDir() + "/does_not_exist.png", &w, &h, &px, &error));
   EXPECT_NE(error.find("does_not_exist.png"), std::string::npos);
+}
+
+// A header may claim up to 1,000,000 x 1,000,000 pixels (libpng's limit): the 4 TB buffer for it was
+// allocated before any image data was read, and `haif diff` died of std::bad_alloc.
+TEST(PngIo, AHugeClaimedSizeIsRefusedBeforeAnythingIsAllocated) {
+  const std::string path = test::tempDir() + "/huge.png";
+  std::vector<uint8_t> rgba(4 * 4 * 4, 200);
+  std::string error;
+  ASSERT_TRUE(writePng(path, 4, 4, rgba.data(), &error)) << error;
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  // IHDR's width and height (bytes 16-23) now say 1,000,000 x 1,000,000, with its CRC recomputed.
+  const uint8_t big[4] = {0x00, 0x0F, 0x42, 0x40};
+  for (int i = 0; i < 4; ++i) bytes[size_t(16 + i)] = char(big[i]), bytes[size_t(20 + i)] = char(big[i]);
+  uint32_t crc = uint32_t(crc32(0L, reinterpret_cast<const Bytef*>(bytes.data() + 12), 17));
+  for (int i = 0; i < 4; ++i) bytes[size_t(29 + i)] = char((crc >> (24 - 8 * i)) & 0xff);
+  int w = 0, h = 0;
+  std::vector<uint8_t> px;
+  EXPECT_FALSE(decodePng(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), "huge.png", &w, &h, &px, &error));
+  EXPECT_NE(error.find("huge.png': 1000000x1000000 pixels is larger than 67108864 pixels"), std::string::npos) << error;
+  EXPECT_TRUE(px.empty());
+  // The same bytes from memory and from the file read alike.
+  ASSERT_TRUE(writePng(path, 4, 4, rgba.data(), &error)) << error;
+  std::ifstream in(path, std::ios::binary);
+  const std::string good((std::istreambuf_iterator<char>(in)), {});
+  ASSERT_TRUE(decodePng(reinterpret_cast<const uint8_t*>(good.data()), good.size(), "good.png", &w, &h, &px, &error))
+      << error;
+  EXPECT_EQ(px, rgba);
 }
 
 }  // namespace

@@ -57,5 +57,21 @@ TEST(JsonPositions, FindsOverflowingNumbersOutsideStrings) {
   EXPECT_EQ(findOverflowingNumber(R"({"v": 1e300})"), std::string::npos);
 }
 
+TEST(JsonPositions, TooDeepNestingIsFoundWithoutRecursion) {
+  const std::string deep = std::string(20000, '[') + std::string(20000, ']');
+  EXPECT_EQ(findTooDeepNesting(deep), size_t(kMaxJsonDepth));
+  EXPECT_EQ(findTooDeepNesting("{\"a\": [[1]], \"b\": {}}", 3), std::string::npos);
+  EXPECT_EQ(findTooDeepNesting("{\"a\": [[1]]}", 2), 7u);
+  EXPECT_EQ(findTooDeepNesting("[\"[[[[\\\"[[[\"]", 1), std::string::npos) << "brackets in strings do not nest";
+  // The scanner refuses it too (it would recurse 20,000 deep), and says where.
+  JsonPositions pos;
+  std::string dup;
+  EXPECT_FALSE(pos.scan(deep, dup));
+  EXPECT_TRUE(dup.empty());
+  EXPECT_EQ(pos.tooDeepOffset(), size_t(kMaxJsonDepth));
+  EXPECT_TRUE(pos.scan("[[[]]]", dup));
+  EXPECT_EQ(pos.tooDeepOffset(), std::string::npos);
+}
+
 }  // namespace
 }  // namespace haif

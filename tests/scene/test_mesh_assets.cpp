@@ -200,6 +200,16 @@ TEST(MeshAssets, BadAssetsGiveOneLineNamingTheFieldAndTheFile) {
   fs::remove_all(dir);
 }
 
+// The same rule as for inline meshes: a collision mesh needs a triangle with area.
+TEST(MeshAssets, AnAssetOfOnlyDegenerateTrianglesIsRefused) {
+  const fs::path dir = scratchDir("degenerate");
+  std::ofstream(dir / "flat.obj") << "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
+  const std::string e = loadError(dir / "scene.json", "{\"bodies\": [{\"type\": \"static\", \"shape\": {\"type\": \"mesh\", "
+                                                      "\"asset\": \"flat.obj\"}}]}");
+  EXPECT_NE(e.find("bodies[0].shape.asset: all 1 triangles are degenerate (zero area)"), std::string::npos) << e;
+  fs::remove_all(dir);
+}
+
 TEST(MeshAssets, RenderMeshIsReadRelativeToTheScene) {
   const fs::path dir = scratchDir("render");
   const TriangleSoup pillar = makePillar(2.0f, 0.3f, 8);

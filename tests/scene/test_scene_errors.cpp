@@ -1,6 +1,8 @@
 // Bad scene input: each problem gives one line "FILE:LINE:COL: PLACE: what", pointing at the value.
 #include "scene_test_util.h"
 
+#include "scene/json_positions.h"
+
 namespace haif::test {
 namespace {
 
@@ -224,6 +226,60 @@ TEST(SceneErrors, AJointOverTheSupportedMassRatioIsRefused) {
       "    {\"name\": \"b\", \"shape\": {\"type\": \"sphere\"}, \"position\": [0, -1, 0], \"mass\": 1e6}\n  ],\n"
       "  \"joints\": [{\"type\": \"ball\", \"body_a\": \"a\", \"body_b\": \"b\", \"anchor\": [0, -0.5, 0]}]\n}\n";
   EXPECT_ERROR(text, "\"b\", \"anchor\"", "joints[0].body_b: joins bodies of 1 and 1000000 kg: a mass ratio of 1:1000000, above the 1:100000");
+}
+
+// 20,000 nested '[' overflowed the stack of the recursive position scanner (a segfault), also where
+// nothing reads the value, inside a comment.
+TEST(SceneErrors, DeepNestingIsOneSyntaxErrorNotACrash) {
+  const std::string deep = std::string(20000, '[') + std::string(20000, ']');
+  const std::string text = "{\"_comment\": " + deep + ", \"bodies\": []}";
+  const std::string e = parseError(text);
+  // The object is level 1, so the 256th bracket opens level 257: column 14 + 255.
+  EXPECT_EQ(e, "mem/bad.json:1:269: syntax error: nested deeper than 256 levels of [ and {");
+  EXPECT_EQ(parseError("{\"bodies\": " + deep + "}").rfind("mem/bad.json:1:", 0), 0u);
+  // As deep as allowed is fine.
+  const std::string ok = "{\"_comment\": " + std::string(kMaxJsonDepth - 1, '[') + std::string(kMaxJsonDepth - 1, ']') + "}";
+  EXPECT_TRUE(parseOk(ok).bodies.empty());
+}
+
+TEST(SceneErrors, ATinyNumberIsReportedAsWritten) {
+  // 1e-300 rounds to 0 as a float: the message used to say "(got 0)".
+  EXPECT_ERROR(R"({"settings": {"dt": 1e-300}})", "1e-300",
+               "settings.dt: must be > 0 (got 1e-300, which is 0 in the engine's 32-bit floats)");
+  EXPECT_ERROR(R"({"settings": {"dt": -2.5e-7}})", "-2.5e-7", "settings.dt: must be > 0 (got -2.5e-07)");
+}
+
+TEST(SceneErrors, AMeshOfOnlyDegenerateTrianglesIsRefused) {
+  // Three points on a line, and a triangle that repeats a corner: no area anywhere.
+  EXPECT_ERROR(body(R"("type": "static")", R"({"type": "mesh", "vertices": [[0,0,0],[1,0,0],[2,0,0]], "indices": [0,1,2, 0,0,1]})"),
+               "[0,1,2", "bodies[0].shape.indices: all 2 triangles are degenerate (zero area)");
+  // One good triangle among degenerate ones is a mesh.
+  EXPECT_EQ(parseOk(body(R"("type": "static")", R"({"type": "mesh", "vertices": [[0,0,0],[1,0,0],[2,0,0],[0,0,1]], "indices": [0,1,2, 0,1,3]})"))
+                .bodies.size(),
+            1u);
+}
+
+TEST(SceneErrors, AbsurdSpeedsAreRefusedWithTheBound) {
+  EXPECT_ERROR(body(R"("velocity": [1e20, 0, 0])"), "[1e20",
+               "bodies[0].velocity: a speed of 1e+20 m/s is outside the speeds the engine supports (up to 10000 m/s)");
+  EXPECT_ERROR(body(R"("type": "kinematic", "angular_velocity": [0, 0, -3e5])"), "[0, 0, -3e5]",
+               "bodies[0].angular_velocity: a spin of 300000 rad/s is outside the spins the engine supports (up to 10000 rad/s)");
+  EXPECT_EQ(parseOk(body(R"("velocity": [300, 0, 0])")).bodies.size(), 1u);  // a bullet is fine
+}
+
+TEST(SceneErrors, ASceneNameMustNotBeAPath) {
+  EXPECT_ERROR(R"({"name": "../../../x"})", "\"../../../x\"",
+               "name: must be a plain name, not a path (got '../../../x') (the name is the default output folder");
+  EXPECT_ERROR(R"({"name": ".."})", "\"..\"", "name: must be a plain name, not a path");
+  EXPECT_ERROR(R"({"name": ""})", "\"\"", "name: must not be empty");
+  EXPECT_EQ(parseOk(R"({"name": "tower collapse, take 2"})").name, "tower collapse, take 2");
+}
+
+TEST(SceneErrors, AFolderGivenAsTheSceneIsNamedAsSuch) {
+  SceneDesc s;
+  std::string error;
+  EXPECT_FALSE(loadSceneFile(sourceDir() + "/scenes", s, error));
+  EXPECT_EQ(error, sourceDir() + "/scenes: is a directory, not a scene file");
 }
 
 }  // namespace
