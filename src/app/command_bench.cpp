@@ -1,6 +1,6 @@
 // haif bench: run time against error. For each scene, sweeps fixed iteration counts on every engine
 // and adaptive budgets on HAIF, plus the seed's three set-ups (sequential fixed:10 on one thread,
-// HAIF adaptive, Bullet fixed:10), measuring ms/step and the DESIGN.md §5 errors. Writes
+// HAIF adaptive, Bullet fixed:10), measuring ms/step and the errors of docs/metrics.md. Writes
 // DIR/results.csv, DIR/report.md and DIR/pareto_<scene>.png.
 #include "app/cli.h"
 #include "app/commands.h"

@@ -1,5 +1,5 @@
-// haif calibrate: measures this machine's cost model (DESIGN.md §2) and writes it to a file that
-// the adaptive controller starts from and model mode decides with.
+// haif calibrate: measures this machine's cost model and writes it to a file that the adaptive
+// controller starts from and model mode decides with (docs/architecture.md, "The iteration controller").
 #include "app/cli.h"
 #include "app/commands.h"
 #include "haif/cost_model.h"

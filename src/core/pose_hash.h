@@ -1,4 +1,4 @@
-// FNV-1a over the bits of body poses: the `state_hash` of DESIGN.md §4. Equal states give equal
+// FNV-1a over the bits of body poses: the `state_hash` of docs/metrics.md. Equal states give equal
 // hashes; one definition serves the World and the engine-comparison tools (Bullet runs hash the
 // same way, so hashes of the two engines are computed alike).
 #pragma once

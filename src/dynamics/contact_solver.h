@@ -1,4 +1,4 @@
-// SOR projected Gauss-Seidel over contact constraints (DESIGN.md §2):
+// SOR projected Gauss-Seidel over contact constraints (docs/solver.md):
 //   dλ = -ω (J v + b) / (J M^-1 J^T),  λ <- clamp(λ + dλ, lo, hi),  v += M^-1 J^T dλ_applied.
 // Per manifold: one normal row per point, solved together as a small block, and friction at the
 // manifold's centre (two tangent rows and one twist row) bounded by μ times the manifold's total

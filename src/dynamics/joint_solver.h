@@ -95,7 +95,7 @@ float solveJointIteration(BodyStore& bodies, JointConstraint* js, size_t n, clas
 /// Writes accumulated impulses back to the joints and records their force and torque (impulse / dt).
 void storeJointImpulses(const JointConstraint* js, size_t n, float dt, Joint* joints);
 
-/// Position-level error of a joint at the bodies' current transforms (DESIGN.md §5 joint error).
+/// Position-level error of a joint at the bodies' current transforms (docs/metrics.md, "Joint error").
 JointError measureJointError(const BodyStore& bodies, const Joint& j);
 
 /// Current relative position of a hinge (angle about the axis, rad) or slider (translation, m).

@@ -12,7 +12,7 @@ AdaptiveController::AdaptiveController(const CostModel& model, const AdaptiveSet
 }
 
 int AdaptiveController::threadsFor(const ControlContext& ctx) const {
-  // Model mode must decide the same for any thread count (DESIGN.md §2), so it plans for the
+  // Model mode must decide the same for any thread count (docs/architecture.md, Threads), so it plans for the
   // cost model's thread count, not the run's.
   return useClock_ ? ctx.threads : model_.modelThreads;
 }

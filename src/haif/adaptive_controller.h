@@ -1,4 +1,4 @@
-// Adaptive iteration control (DESIGN.md §2):
+// Adaptive iteration control (docs/architecture.md, "The iteration controller"):
 //   I = clamp(floor(α · T_remaining / t_iter), I_min, I_max)
 // T_remaining is what the budget leaves after the step's collision detection, divided by c, minus
 // what the step will still spend outside the iterations (row preparation, integration); t_iter is

@@ -20,7 +20,7 @@ struct CostModel {
     return msPerBody * 0.5 * bodies + msPerContactPoint * contactPoints;
   }
   /// Rows on the critical path with `threads` threads: the larger of the biggest island and
-  /// the total work shared among the threads (DESIGN.md §2).
+  /// the total work shared among the threads (docs/architecture.md, "The iteration controller").
   static double criticalRows(unsigned totalRows, unsigned largestRows, int threads, double efficiency);
 
   /// Writes "key value" lines; returns false with a message on failure.

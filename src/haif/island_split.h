@@ -1,4 +1,4 @@
-// Splitting a giant island for parallel solving (DESIGN.md §2: "giant islands split further").
+// Splitting a giant island for parallel solving (docs/architecture.md, "One step", stage 8).
 //
 // A dense stack or a building is one island, and an island is solved by one task: the step would
 // fall back to one core. The island's bodies are cut into K vertical strips by their position along

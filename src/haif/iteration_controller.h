@@ -1,4 +1,4 @@
-// Chooses the solver iteration count of each step (DESIGN.md §2, adaptive iteration control).
+// Chooses the solver iteration count of each step (docs/architecture.md, "The iteration controller").
 #pragma once
 
 #include <cstdint>

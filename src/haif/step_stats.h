@@ -27,7 +27,7 @@ struct StepStats {
   double iterationsMean = 0;
   uint64_t rowIterations = 0;     ///< Σ rows × iterations run (work done)
   float residual = 0;             ///< largest last-iteration velocity correction over islands (m/s)
-  double solveError = std::numeric_limits<double>::quiet_NaN();  ///< DESIGN §5, when measured
+  double solveError = std::numeric_limits<double>::quiet_NaN();  ///< docs/metrics.md; NaN: not measured
   uint32_t islands = 0, largestIsland = 0;   ///< largest in bodies
   uint32_t awakeBodies = 0, sleepingBodies = 0;
   uint32_t contacts = 0, contactPoints = 0;  ///< touching manifolds and their points

@@ -787,7 +787,7 @@ void World::relaxIslands(int relaxIterations) {
 }
 
 double World::measureSolveError(int iterations) {
-  // e = |v_I - v*|_M / |v_0 - v*|_M over the dynamic bodies of the islands (DESIGN.md §5), with v_0
+  // e = |v_I - v*|_M / |v_0 - v*|_M over the dynamic bodies of the islands (docs/metrics.md), with v_0
   // the solver's starting point (after warm starting), v_I after the iterations, v* converged.
   const uint32_t n = bodyCount();
   const auto t0 = Clock::now();

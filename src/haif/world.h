@@ -1,4 +1,4 @@
-// The physics world: bodies, shapes, contacts, and the step pipeline of DESIGN.md §2.
+// The physics world: bodies, shapes, contacts, and the step pipeline (docs/architecture.md, "One step").
 // It lives in src/haif (not src/core) because the step uses islands and the iteration
 // controller, and dependencies must point one way: haif -> dynamics -> collision -> core.
 #pragma once
@@ -103,7 +103,7 @@ class World {
   const Joint& joint(uint32_t id) const { return joints_[id]; }
   /// The definition of a joint, to change its motor, limits or thresholds between steps.
   JointDef& jointDef(uint32_t id) { return joints_[id].def; }
-  /// Position error of a joint at the current state (DESIGN.md §5); zero for a broken joint.
+  /// Position error of a joint at the current state (docs/metrics.md, "Joint error"); zero for a broken joint.
   JointError jointError(uint32_t id) const;
   /// Replaces the iteration controller (default: fixed at settings.iterations).
   void setController(std::unique_ptr<IterationController> c);
@@ -111,7 +111,7 @@ class World {
   /// Worker threads used by the parallel stages (1 = everything on the calling thread).
   void setThreads(int threads);
   int threads() const { return settings_.threads; }
-  /// Measure DESIGN §5 solve error every `every` steps (0: never). Costs a converged solve.
+  /// Measure the solve error (docs/metrics.md) every `every` steps (0: never). Costs a converged solve.
   void setSolveErrorInterval(int every) { solveErrorEvery_ = every; }
 
   /// Advances the world by settings().dt.

@@ -1,5 +1,5 @@
 // Scene generators: parametric layouts expanded into bodies at load time (the reference scenes of
-// DESIGN.md §6 among them). Pure functions of their parameters: the same input gives bit-identical
+// docs/reference_scenes.md among them). Pure functions of their parameters: the same input gives bit-identical
 // bodies on every machine (positions are computed in double and rounded once; the random pile uses
 // its own integer PRNG and no transcendental functions).
 #pragma once
@@ -33,7 +33,8 @@ class SplitMix64 {
 /// Generators copy it and set shape, position, orientation and `where` ("<prefix> #k").
 using BodyPrototype = BodyDesc;
 
-/// The DESIGN ground: a static box, by default half (500, 1, 500) centred at y = -1 (top face at y = 0).
+/// The reference ground (docs/reference_scenes.md): a static box, by default half (500, 1, 500) centred at
+/// y = -1 (top face at y = 0).
 struct GroundParams {
   Vec3d halfExtents{500.0, 1.0, 500.0};
   Vec3d position{0.0, -1.0, 0.0};
@@ -49,7 +50,7 @@ struct StackParams {
 };
 void generateStack(const StackParams& p, const BodyPrototype& proto, const std::string& where, std::vector<BodyDesc>& out);
 
-/// DESIGN stacks_N: N boxes in stacks of `perStack`; stack s at origin + spacing * (s mod k, 0, floor(s / k)),
+/// Reference stacks_N: N boxes in stacks of `perStack`; stack s at origin + spacing * (s mod k, 0, floor(s / k)),
 /// k = ceil(sqrt(ceil(N / perStack))); box h at y = hy + h * (2 hy + gap). The last stack may be partial.
 struct StacksParams {
   int count = 100;
@@ -62,7 +63,7 @@ struct StacksParams {
 int stacksGridSide(int count, int perStack);  ///< k of the layout
 void generateStacks(const StacksParams& p, const BodyPrototype& proto, const std::string& where, std::vector<BodyDesc>& out);
 
-/// DESIGN large_pyramid: a 2D pyramid of cubes (edge s = 2 half) in the x-y plane; for i in 0..base-1,
+/// Reference large_pyramid: a 2D pyramid of cubes (edge s = 2 half) in the x-y plane; for i in 0..base-1,
 /// j in i..base-1: origin + s * (0.5 (i+1) + (j-i) - 0.5 base, i + 0.5, 0). base (base+1)/2 boxes.
 struct Pyramid2dParams {
   int base = 100;
@@ -71,18 +72,18 @@ struct Pyramid2dParams {
 };
 void generatePyramid2d(const Pyramid2dParams& p, const BodyPrototype& proto, const std::string& where, std::vector<BodyDesc>& out);
 
-/// DESIGN pyramid_15: square layers of cubes (half h); for i in 0..base-1, j,k in floor(i/2) .. base-1-floor((i+1)/2):
+/// Reference pyramid_15: square layers of cubes (half h); for i in 0..base-1, j,k in floor(i/2) .. base-1-floor((i+1)/2):
 /// origin + (-base h + 2h j + (i odd ? h : 0), h + i (2h + layerGap), -base h + 2h k + (i odd ? h : 0)).
 /// Layers start layerGap apart (default h/2) and settle. Sum of (base-i)^2 boxes.
 struct Pyramid3dParams {
   int base = 15;
   double half = 1.0;
-  double layerGap = -1.0;  ///< < 0: h / 2 (the DESIGN layout)
+  double layerGap = -1.0;  ///< < 0: h / 2 (the reference layout)
   Vec3d origin{0.0, 0.0, 0.0};
 };
 void generatePyramid3d(const Pyramid3dParams& p, const BodyPrototype& proto, const std::string& where, std::vector<BodyDesc>& out);
 
-/// DESIGN many_pyramids: rows x cols 2D pyramids of `base` cubes (edge s); pitch P = (base + 1) s,
+/// Reference many_pyramids: rows x cols 2D pyramids of `base` cubes (edge s); pitch P = (base + 1) s,
 /// G_x = cols P / 2, G_z = rows P / 2; row z_r = -G_z + s + r 2 (G_z - s) / (rows - 1) (0 for one row),
 /// column centre c_x = -G_x + c P + s; box (i, j >= i) at origin + (c_x + s (0.5 (i+1) + (j-i) - 0.5), s (i + 0.5), z_r).
 /// Order: rows, then columns, then i, then j.

@@ -98,7 +98,7 @@ std::string benchReportMarkdown(const std::vector<BenchResult>& rows, const Benc
   md += "Engines: ";
   for (size_t i = 0; i < info.engines.size(); ++i) md += (i ? ", " : "") + info.engines[i];
   md += ". " + std::to_string(info.steps) + " steps per run" + (info.quick ? " (--quick)" : "") +
-        "; HAIF on " + std::to_string(info.threads) + " thread(s), Bullet on 1. Solve error (DESIGN.md §5) " +
+        "; HAIF on " + std::to_string(info.threads) + " thread(s), Bullet on 1. Solve error (docs/metrics.md) " +
         (info.errorEvery > 0 ? "sampled every " + std::to_string(info.errorEvery) + " steps" : "not measured") +
         "; penetration, drop and jitter computed by the same code for every engine from body states and contact "
         "depths. ms/step is the median / p95 wall time of a step.";
@@ -220,7 +220,7 @@ std::string benchReportMarkdown(const std::vector<BenchResult>& rows, const Benc
   }
 
   md += "## What is and is not comparable\n\n"
-        "- **Solve error** (DESIGN.md §5) needs a converged solve of the same state inside the solver; HAIF "
+        "- **Solve error** (docs/metrics.md) needs a converged solve of the same state inside the solver; HAIF "
         "measures it, Bullet's solver offers no such hook, so Bullet's is **n/a** rather than an invented number.\n"
         "- **Penetration, drop, jitter** come from each engine's body states and contact points (Bullet: the "
         "dispatcher's manifolds after the step), through the same code.\n"

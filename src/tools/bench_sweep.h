@@ -1,5 +1,5 @@
 // The benchmark's unit of work: one engine and solver set-up run on one scene for a number of
-// steps, measuring its cost (ms per step) and its error (DESIGN.md §5) the same way for every engine.
+// steps, measuring its cost (ms per step) and its error (docs/metrics.md) the same way for every engine.
 #pragma once
 
 #include "tools/engine_spec.h"
@@ -30,7 +30,7 @@ struct BenchResult {
   /// machine do not inflate the way they inflate wall time; equals ms/step for one thread on an idle machine.
   double cpuMsMedian = 0;
   double iterationsMean = 0, missRate = 0;
-  double solveError = NAN;   ///< mean DESIGN.md §5 solve error over the sampled steps; NaN: not available
+  double solveError = NAN;   ///< mean solve error (docs/metrics.md) over the sampled steps; NaN: not available
   double maxPenetration = 0, rmsPenetration = 0, maxPenetrationFraction = 0;
   double meanDrop = 0, maxDrop = 0, jitter = 0;
   bool nan = false;

@@ -1,4 +1,4 @@
-// The error metrics of DESIGN.md §5 that any engine can be measured by, computed from what the
+// The error metrics of docs/metrics.md that any engine can be measured by, computed from what the
 // EngineRun interface reports (body states and contact depths), so HAIF and Bullet are judged by
 // the same code: penetration, drop, jitter. (The solve error needs the solver's inside: the engine
 // reports it itself, or it is not available.)

@@ -17,7 +17,7 @@ namespace haif {
 struct EngineStepInfo {
   double ms = 0.0;          ///< wall time of the step (HAIF: without its solve-error measurement)
   int iterations = 0;       ///< solver iterations the step ran (HAIF: the count chosen)
-  double solveError = NAN;  ///< DESIGN.md §5 solve error, when the engine measured it this step
+  double solveError = NAN;  ///< solve error (docs/metrics.md), when the engine measured it this step
   bool deadlineMiss = false;///< over the step budget (engines with a budget only)
 };
 
@@ -57,7 +57,7 @@ class EngineRun {
   /// Hash of every body's position and orientation bits: equal states give equal hashes.
   virtual uint64_t stateHash() const = 0;
 
-  /// Whether step() can report the DESIGN.md §5 solve error (it needs the engine's solver inside).
+  /// Whether step() can report the solve error (docs/metrics.md) (it needs the engine's solver inside).
   virtual bool canMeasureSolveError() const { return false; }
   /// Measure the solve error every `every` steps (0: never); ignored where it cannot be measured.
   virtual void setSolveErrorInterval(int every) { (void)every; }

@@ -1,4 +1,4 @@
-// Error metrics of a run (DESIGN.md §5), accumulated step by step.
+// Error metrics of a run (docs/metrics.md), accumulated step by step.
 #pragma once
 
 #include "haif/world.h"
@@ -24,7 +24,7 @@ class RunMetrics {
   double rmsVelocityLastSecond() const { return velCount_ ? std::sqrt(velSq_ / double(velCount_)) : 0.0; }
   bool nanDetected() const { return nan_; }
   double energyDriftRelative(const World& world) const;        ///< (E - E0) / E0, total mechanical energy
-  /// Joint error (DESIGN.md §5) after each step over the unbroken joints: anchor separation and angle.
+  /// Joint error (docs/metrics.md) after each step over the unbroken joints: anchor separation and angle.
   double maxJointError() const { return maxJointM_; }          ///< m
   double rmsJointError() const { return jointCount_ ? std::sqrt(jointSq_ / double(jointCount_)) : 0.0; }  ///< m
   double maxJointErrorAngle() const { return maxJointRad_; }   ///< rad

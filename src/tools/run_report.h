@@ -1,4 +1,4 @@
-// stats.csv (one row per step) and summary.json of a run (DESIGN.md §4).
+// stats.csv (one row per step) and summary.json of a run (docs/metrics.md).
 #pragma once
 
 #include "haif/step_stats.h"

@@ -1,5 +1,6 @@
 // Fixed, model and replay modes are bit-identical for any thread count, and replaying any run's
-// logged iteration counts (adaptive, model, fixed) reproduces that run exactly (DESIGN.md §2, §5).
+// logged iteration counts (adaptive, model, fixed) reproduces that run exactly (docs/architecture.md,
+// Threads and "The iteration controller").
 // Lives in tests/app because test_haif links only haif_physics and makeSimulation is in haif_tools.
 #include "tools/run_report.h"
 #include "tools/simulation.h"

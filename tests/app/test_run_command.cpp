@@ -1,5 +1,5 @@
 // The haif command on bad input: non-zero exit, one error naming the file and place, no output files.
-// And one good run whose summary.json / stats.csv follow DESIGN.md §4. Needs the haif target built.
+// And one good run whose summary.json / stats.csv follow docs/metrics.md. Needs the haif target built.
 #include <nlohmann/json.hpp>
 
 #include <gtest/gtest.h>

@@ -43,7 +43,7 @@ TEST(Determinism, SamePileTwiceGivesSameHash) {
 }
 
 TEST(Determinism, ThreadCountDoesNotChangeTheResult) {
-  // Fixed mode must be bit-identical for any thread count (DESIGN.md §2).
+  // Fixed mode must be bit-identical for any thread count (docs/architecture.md, Threads).
   const uint64_t one = runPile(1, 150);
   EXPECT_EQ(runPile(4, 150), one);
 }

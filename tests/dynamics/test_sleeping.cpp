@@ -70,7 +70,7 @@ TEST_P(SleepingStack, SleepsAndWakesWhenHit) {
 INSTANTIATE_TEST_SUITE_P(Sleeping, SleepingStack, ::testing::Values(1, 5));
 
 TEST(Sleeping, DisabledMeansNobodySleeps) {
-  World w;  // sleeping defaults to false (DESIGN.md §6)
+  World w;  // sleeping defaults to false (WorldSettings; the reference scenes of docs/reference_scenes.md do not sleep)
   addGround(w);
   addBox(w, Vec3(0.0f, 0.5f, 0.0f));
   for (int s = 0; s < 120; ++s) w.step();

@@ -52,7 +52,7 @@ TEST(AcceleratedSolve, HoldsTheColumnBetterThanSweepsAlone) {
   EXPECT_LT(fast.worstDeviation, 0.5f * plain.worstDeviation);
 }
 
-// Mean solve error (DESIGN.md §5) of a box pyramid over `steps` steps at 10 iterations.
+// Mean solve error (docs/metrics.md) of a box pyramid over `steps` steps at 10 iterations.
 double pyramidError(int base, float momentumLayers, int steps) {
   WorldSettings ws;
   ws.iterations = 10;

@@ -1,4 +1,4 @@
-// DESIGN.md §5 solve error e = |v_I - v*|_M / |v_0 - v*|_M: in [0, 1], smaller with more iterations.
+// The solve error of docs/metrics.md, e = |v_I - v*|_M / |v_0 - v*|_M: in [0, 1], smaller with more iterations.
 #include "haif/world.h"
 
 #include "support/physics_test_util.h"

@@ -1,4 +1,4 @@
-// The DESIGN.md §6 reference scenes: exact counts and positions from the stated formulas.
+// The reference scenes of docs/reference_scenes.md: exact counts and positions from the stated formulas.
 #include "scene_test_util.h"
 
 #include <cmath>
@@ -14,7 +14,7 @@ void expectCommonSettings(const SceneDesc& s) {
   EXPECT_EQ(s.settings.iterations, 10);
   EXPECT_FALSE(s.settings.sleeping);
   EXPECT_FLOAT_EQ(s.materials[0].friction, 0.6f);
-  // The DESIGN ground: one static box, half (500, 1, 500) at y = -1.
+  // The reference ground: one static box, half (500, 1, 500) at y = -1.
   ASSERT_EQ(countMotion(s, MotionType::Static), 1);
   for (const BodyDesc& b : s.bodies)
     if (b.motion == MotionType::Static) {

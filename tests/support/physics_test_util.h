@@ -10,7 +10,7 @@
 
 namespace haif::test {
 
-/// The reference ground of DESIGN.md §6: static box half (500, 1, 500) centred at y = -1 (top at y = 0).
+/// The reference ground of docs/reference_scenes.md: static box half (500, 1, 500) centred at y = -1 (top at y = 0).
 inline uint32_t addGround(World& w, float friction = 0.6f, float restitution = 0.0f) {
   BodyDef d;
   d.kind = BodyKind::Static;
@@ -40,14 +40,14 @@ inline uint32_t addSphere(World& w, const Vec3& p, float r = 0.5f, float mass = 
 }
 
 /// A column of `count` unit boxes (mass 1) on the ground at (x, z), box h at y = 0.5 + pitch·h
-/// (pitch 1: touching; the reference stacks of DESIGN.md §6 use 1.01). Returns the box ids, bottom first.
+/// (pitch 1: touching; the reference stacks of docs/reference_scenes.md use 1.01). Returns the box ids, bottom first.
 inline std::vector<uint32_t> addColumn(World& w, int count, float x = 0.0f, float z = 0.0f, float pitch = 1.0f) {
   std::vector<uint32_t> ids;
   for (int h = 0; h < count; ++h) ids.push_back(addBox(w, Vec3(x, 0.5f + pitch * float(h), z)));
   return ids;
 }
 
-/// The 2D pyramid of DESIGN.md §6 (large_pyramid) with `base` boxes in the bottom row, centred on x = 0.
+/// The 2D pyramid of docs/reference_scenes.md (large_pyramid) with `base` boxes in the bottom row, centred on x = 0.
 /// Ground and a 10-box column with 1 cm gaps between the boxes, as in stacks_N: the boxes land on
 /// each other during the first steps.
 inline void addGappedColumn(World& w) {
