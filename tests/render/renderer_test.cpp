@@ -446,9 +446,10 @@ TEST(Renderer, TiltedBoxCastsTheSameShadowAsTheSameHull) {
   EXPECT_LE(differingPixels(images[0], images[1]), 12) << "box and hull cast the same shadow";
 }
 
-// Prints (does not assert) the frame time of the performance target: 2000 boxes, 1280x720,
-// shadows (1024 map) and 4x MSAA, with and without the overlay. Timings on a shared machine are noisy.
-TEST(RenderBenchmark, Stacks2000FrameTimePrinted) {
+// The renderer's performance target (2000 boxes, 1280x720, shadows, 4x MSAA; timed by
+// tests/bench/render_bench.cpp, not here) renders, and the overlay charts draw in a band of the
+// frame: they change pixels, and leave most of the scene as it was.
+TEST(RendererFrame, Stacks2000WithAndWithoutTheOverlay) {
   RendererOptions o;  // defaults: 1280x720, 4x MSAA, 1024 shadow map
   std::string error;
   auto r = Renderer::create(o, &error);
@@ -470,21 +471,16 @@ TEST(RenderBenchmark, Stacks2000FrameTimePrinted) {
     f.overlay.collisionMs.push_back(2.f);
     f.overlay.solveMs.push_back(4.f);
   }
-  std::vector<uint8_t> px;
-  for (bool overlay : {false, true}) {
-    f.overlay.enabled = overlay;
-    ASSERT_TRUE(r->render(f, px, &error)) << error;  // warm-up (font, buffers)
-    double best = 1e30, sum = 0.0;
-    const int frames = 3;
-    for (int i = 0; i < frames; ++i) {
-      const auto t0 = std::chrono::steady_clock::now();
-      ASSERT_TRUE(r->render(f, px, &error)) << error;
-      const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      best = std::min(best, ms), sum += ms;
-    }
-    std::printf("[ bench    ] stacks_2000 1280x720 shadows+%dxMSAA overlay=%s: mean %.1f ms, best %.1f ms\n",
-                r->msaaSamples(), overlay ? "on" : "off", sum / frames, best);
-  }
+  std::vector<uint8_t> plain, charted;
+  f.overlay.enabled = false;
+  ASSERT_TRUE(r->render(f, plain, &error)) << error;
+  f.overlay.enabled = true;
+  ASSERT_TRUE(r->render(f, charted, &error)) << error;
+  ASSERT_EQ(plain.size(), size_t(1280) * 720 * 4);
+  const int changed = differingPixels(plain, charted), total = 1280 * 720;
+  std::printf("overlay changed %d of %d pixels\n", changed, total);
+  EXPECT_GT(changed, total / 100) << "the charts are drawn";
+  EXPECT_LT(changed, total / 3) << "and only in their band";
 }
 
 }  // namespace
