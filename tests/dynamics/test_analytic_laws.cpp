@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 using namespace haif;
@@ -271,4 +272,61 @@ TEST(AnalyticLaws, AProjectileLandsWhereSemiImplicitEulerSaysAndWithinAStepOfThe
   EXPECT_NEAR(range / (vx * (2.0 * vy / g - dt)), 1.0, 1e-4);
   // One step's travel short, plus what the chord between two steps adds to the crossing (< 0.1 step).
   EXPECT_NEAR(range, v * v / g - vx * dt, 0.1 * vx * dt) << "a step's travel short of the parabola's range";
+}
+
+TEST(AnalyticLaws, ARotatingPaddlePushesBoxesWithoutFeedingThemEnergy) {
+  // A kinematic paddle (4 m long, 2 rad/s about the vertical, tip speed 4 m/s) sweeps 24 boxes
+  // round a 5 x 5 m pen for 10 s. Each turn (3.1 s) gives the boxes about the same kinetic energy,
+  // and friction takes it out again: the peak of a turn may not grow from turn to turn. A box
+  // squeezed between the paddle and a wall at a shallow angle leaves faster than the paddle (as a
+  // pip pressed between two fingers: 8.4 m/s seen here), but never so fast that the engine's speed
+  // bound (haif/speed_bound.h) has to act, and within 3 tip speeds.
+  for (const int iterations : {10, 4}) {
+    WorldSettings ws;
+    ws.iterations = iterations;
+    World w(ws);
+    addGround(w);
+    BodyDef p;
+    p.kind = BodyKind::Kinematic;
+    p.shape = Shape::box(Vec3(2.0f, 0.3f, 0.1f));
+    p.xf.p = Vec3(0.0f, 0.3f, 0.0f);
+    p.angularVelocity = Vec3(0.0f, 2.0f, 0.0f);
+    w.addBody(p);
+    for (int side = 0; side < 4; ++side) {  // a 5 x 5 m pen keeps the boxes in the paddle's reach
+      BodyDef wall;
+      wall.kind = BodyKind::Static;
+      const bool alongX = side < 2;
+      wall.shape = Shape::box(alongX ? Vec3(2.7f, 0.5f, 0.2f) : Vec3(0.2f, 0.5f, 2.7f));
+      const float at = (side % 2 ? 1.0f : -1.0f) * 2.5f;
+      wall.xf.p = alongX ? Vec3(0.0f, 0.5f, at) : Vec3(at, 0.5f, 0.0f);
+      w.addBody(wall);
+    }
+    std::vector<uint32_t> boxes;
+    for (int i = 0; i < 24; ++i) {
+      const float a = float(i) * 2.0f * kPi / 24.0f, r = 0.8f + 0.2f * float(i % 6);
+      boxes.push_back(addBox(w, Vec3(r * std::cos(a), 0.2f, r * std::sin(a)), Vec3::Constant(0.2f)));
+    }
+    float fastest = 0.0f;
+    uint32_t limited = 0;
+    std::vector<double> energyPerTurn;
+    double turnEnergy = 0.0;
+    for (int s = 1; s <= 600; ++s) {
+      w.step();
+      limited += w.lastStats().speedLimited;
+      double e = 0.0;
+      for (uint32_t b : boxes) {
+        fastest = std::max(fastest, w.bodies().v[b].norm());
+        e += 0.5 * w.bodies().v[b].squaredNorm();
+      }
+      turnEnergy = std::max(turnEnergy, e);
+      if (s % 188 == 0) {  // about one turn (2π / 2 rad/s = 3.14 s)
+        energyPerTurn.push_back(turnEnergy);
+        turnEnergy = 0.0;
+      }
+    }
+    EXPECT_LT(fastest, 12.0f) << iterations << " iterations";
+    EXPECT_EQ(limited, 0u) << iterations << " iterations";
+    ASSERT_EQ(energyPerTurn.size(), 3u);
+    EXPECT_LE(energyPerTurn[2], energyPerTurn[0] * 1.5 + 1.0) << iterations << " iterations: the peak kinetic energy of a turn grows";
+  }
 }
