@@ -786,6 +786,24 @@ void World::relaxIslands(int relaxIterations) {
   forEachIslandTimed(relax, store, /*firstIsSweeps=*/true);
 }
 
+namespace {
+
+// Sets a value for the life of the object and puts the old one back, exceptions included.
+template <class T>
+class ScopedValue {
+ public:
+  ScopedValue(T& ref, T value) : ref_(ref), old_(ref) { ref_ = value; }
+  ~ScopedValue() { ref_ = old_; }
+  ScopedValue(const ScopedValue&) = delete;
+  ScopedValue& operator=(const ScopedValue&) = delete;
+
+ private:
+  T& ref_;
+  T old_;
+};
+
+}  // namespace
+
 double World::measureSolveError(int iterations) {
   // e = |v_I - v*|_M / |v_0 - v*|_M over the dynamic bodies of the islands (docs/metrics.md), with v_0
   // the solver's starting point (after warm starting), v_I after the iterations, v* converged.
@@ -798,13 +816,13 @@ double World::measureSolveError(int iterations) {
   startW_ = bodies_.w;
   bodies_.v = saveV_;
   bodies_.w = saveW_;
-  const float tol = settings_.residualTolerance;
-  settings_.residualTolerance = 1e-6f;
-  const int iMin = controller_->iMin;
-  controller_->iMin = 1;
-  solveIslands(1000);
-  controller_->iMin = iMin;
-  settings_.residualTolerance = tol;
+  {
+    // The reference solve converges: a tight tolerance and no floor on the sweeps, put back on the
+    // way out of this block however it is left.
+    const ScopedValue<float> tol(settings_.residualTolerance, 1e-6f);
+    const ScopedValue<int> iMin(controller_->iMin, 1);
+    solveIslands(1000);
+  }
   refV_ = bodies_.v;
   refW_ = bodies_.w;
   bodies_.v = saveV_;
