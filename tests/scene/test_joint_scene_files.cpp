@@ -73,5 +73,34 @@ TEST(JointSceneFiles, EveryJointedSceneRuns) {
   }
 }
 
+TEST(JointSceneFiles, NewtonsCradlePassesTheFirstBallsMomentumToTheLast) {
+  // Five equal steel balls (e = 1) hung in a row 8 cm apart: ball 0, let go from the side, hits
+  // ball 1, and each equal-mass elastic impact swaps velocities, so the last ball leaves with the
+  // first one's speed and the others stay put. Within 1 % (the joints turn the balls' paths a
+  // little between impacts), the others within 2 % of it (they swing back under gravity while the
+  // row passes the momentum on), at 10 and 4 iterations.
+  const SceneDesc scene = loadReferenceScene("newtons_cradle.json");
+  for (const int iterations : {10, 4}) {
+    WorldSettings s = worldSettingsFor(scene);
+    s.iterations = iterations;
+    World w(s);
+    std::string error;
+    ASSERT_TRUE(buildWorld(scene, w, error)) << error;
+    uint32_t ball[5];
+    for (int k = 0; k < 5; ++k) ball[k] = uint32_t(2 + k);  // after the ground and the frame
+    float impact = 0.0f;
+    int step = 0;
+    for (; step < 120 && w.bodies().v[ball[4]].x() == 0.0f; ++step) {
+      impact = std::max(impact, w.bodies().v[ball[0]].x());
+      w.step();
+    }
+    ASSERT_LT(step, 120) << iterations << ": the last ball never moved";
+    EXPECT_GT(impact, 3.0f) << "ball 0 swung in";
+    EXPECT_NEAR(w.bodies().v[ball[4]].x() / impact, 1.0f, 0.01f) << iterations << " iterations";
+    for (int k = 0; k < 4; ++k)
+      EXPECT_LT(std::fabs(w.bodies().v[ball[k]].x()), 0.02f * impact) << iterations << " iterations, ball " << k;
+  }
+}
+
 }  // namespace
 }  // namespace haif::test
