@@ -62,7 +62,7 @@ struct WorldSettings {
   bool resolvePinches = true;
   /// Bodies in contact moving slower than this fraction of |g| dt are slowed before their poses move:
   /// the solve's leftover creep in a resting pile (haif/rest_damping.h). 0: off.
-  float restDamping = 0.01f;
+  float restDamping = 0.05f;
   bool sleeping = false;
   float timeToSleep = 0.5f;         ///< s an island must rest before it sleeps
   float sleepLinear = 0.05f;        ///< m/s

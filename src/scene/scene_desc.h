@@ -97,7 +97,7 @@ struct SimSettings {
   bool chainSolve = true;   ///< exact solve of chain-shaped islands (stacks): dynamics/contact_chain.h
   bool wideSolve = false;   ///< SIMD sweeps over lane batches: dynamics/wide_contact_solver.h
   bool reuseManifolds = true;  ///< keep manifolds of pairs at rest: collision/manifold_cache.h
-  float restDamping = 0.01f;   ///< bodies in contact slower than this fraction of |g| dt are slowed: haif/rest_damping.h
+  float restDamping = 0.05f;   ///< bodies in contact slower than this fraction of |g| dt are slowed: haif/rest_damping.h
   int frames = 300;         ///< default number of steps for `haif run`
 };
 

@@ -11,7 +11,7 @@ namespace haif::test {
 namespace {
 
 // Largest drop (m) of a dynamic body after `steps` steps of a shipped scene.
-float maxDropAfter(const std::string& scene, int steps, bool frictionAnchors, float restDamping = 0.01f) {
+float maxDropAfter(const std::string& scene, int steps, bool frictionAnchors, float restDamping = WorldSettings{}.restDamping) {
   Simulation sim;
   std::string error;
   EXPECT_TRUE(makeSimulation(std::string(HAIF_SOURCE_DIR) + "/scenes/" + scene, SolverSpec{}, 2, sim, error)) << error;

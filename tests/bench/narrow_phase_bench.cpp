@@ -1,0 +1,116 @@
+// Google Benchmark of the narrow phase: every pair of shape types (sphere, box, capsule, convex
+// hull, and a mesh triangle as the second shape), each separated beyond the margin, touching, and
+// deep, reporting ns per collide() call (issue 27). Timings are medians of repetitions:
+//   ./build/bench_narrow_phase --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+#include "collision/collide.h"
+#include "collision/convex_hull.h"
+#include "collision/triangle_mesh.h"
+
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace haif {
+namespace {
+
+constexpr float kMargin = 0.02f;  // the world's default speculative margin
+
+// A shape with how far it reaches above and below its centre: the pairs are stacked along y, and
+// only turned about y (which keeps those reaches), so each gap is exact.
+struct Piece {
+  std::string name;
+  Shape shape;
+  Quat q = Quat::Identity();
+  float up = 0.0f, down = 0.0f;
+};
+
+std::vector<Piece> pieces() {
+  std::vector<Piece> out;
+  out.push_back({"sphere", Shape::sphere(0.5f), Quat::Identity(), 0.5f, 0.5f});
+  out.push_back({"box", Shape::box(Vec3(0.6f, 0.4f, 0.5f)), Quat::Identity(), 0.4f, 0.4f});
+  // A capsule lying along x (its core runs along local y).
+  out.push_back({"capsule", Shape::capsule(0.3f, 0.5f), Quat(Eigen::AngleAxisf(1.5707963f, Vec3::UnitZ())), 0.3f, 0.3f});
+  // A hull of 24 points on an irregular ellipsoid: faces and edges of mixed sizes, as a rock.
+  std::vector<Vec3> pts;
+  for (int i = 0; i < 24; ++i) {
+    const float t = float(i) * 2.3999632f, z = 1.0f - 2.0f * (float(i) + 0.5f) / 24.0f, r = std::sqrt(1.0f - z * z);
+    pts.emplace_back(0.6f * r * std::cos(t), 0.45f * z, 0.5f * r * std::sin(t));
+  }
+  std::string error;
+  auto hull = buildConvexHull(pts, &error);
+  float top = -1e30f, bottom = 1e30f;
+  for (const Vec3& p : pts) top = std::max(top, p.y()), bottom = std::min(bottom, p.y());
+  out.push_back({"hull", Shape::convexHull(hull), Quat::Identity(), top, -bottom});
+  return out;
+}
+
+Piece meshTriangle() {
+  auto mesh = buildTriangleMesh({Vec3(-20.0f, 0.0f, -20.0f), Vec3(20.0f, 0.0f, -20.0f), Vec3(0.0f, 0.0f, 30.0f)},
+                                {0, 2, 1}, nullptr);
+  return {"mesh_triangle", Shape::triangleMesh(mesh), Quat::Identity(), 0.0f, 0.0f};
+}
+
+// Gap between the two shapes along y: beyond the margin (an early out), touching, deep.
+struct Setting {
+  const char* name;
+  float gap;
+};
+constexpr Setting kSettings[] = {{"separated", 0.1f}, {"touching", -0.001f}, {"deep", -0.1f}};
+
+void collidePair(benchmark::State& state, Piece a, Piece b, float gap) {
+  // a below, b above, b turned 0.3 rad about y so no edges or faces line up exactly.
+  Transform xa, xb;
+  xa.q = a.q;
+  xb.q = Quat(Eigen::AngleAxisf(0.3f, Vec3::UnitY())) * b.q;
+  xb.p = Vec3(0.05f, a.up + b.down + gap, 0.03f);
+  Manifold m;
+  int points = 0;
+  for (auto _ : state) {
+    points = collide(a.shape, xa, b.shape, xb, kMargin, m);
+    benchmark::DoNotOptimize(m);
+  }
+  state.counters["points"] = points;
+}
+
+void registerAll() {
+  const std::vector<Piece> ps = pieces();
+  for (size_t i = 0; i < ps.size(); ++i)
+    for (size_t j = i; j < ps.size(); ++j)
+      for (const Setting& s : kSettings)
+        benchmark::RegisterBenchmark((ps[i].name + "-" + ps[j].name + "/" + s.name).c_str(), collidePair, ps[i], ps[j], s.gap);
+  // A mesh is static and second: the shape rests on the triangle.
+  const Piece tri = meshTriangle();
+  for (const Piece& p : ps)
+    for (const Setting& s : kSettings) {
+      Piece above = p;
+      benchmark::RegisterBenchmark((p.name + "-" + tri.name + "/" + s.name).c_str(),
+                                   [above, tri, s](benchmark::State& st) {
+                                     // The triangle below: a = the shape above, b = the mesh under it.
+                                     Transform xa, xb;
+                                     xa.q = Quat(Eigen::AngleAxisf(0.3f, Vec3::UnitY())) * above.q;
+                                     xa.p = Vec3(0.05f, above.down + s.gap, 0.03f);
+                                     Manifold m;
+                                     int points = 0;
+                                     for (auto _ : st) {
+                                       points = collide(above.shape, xa, tri.shape, xb, kMargin, m);
+                                       benchmark::DoNotOptimize(m);
+                                     }
+                                     st.counters["points"] = points;
+                                   });
+    }
+}
+
+}  // namespace
+}  // namespace haif
+
+int main(int argc, char** argv) {
+  haif::registerAll();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
