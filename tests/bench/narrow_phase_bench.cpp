@@ -33,11 +33,17 @@ std::vector<Piece> pieces() {
   out.push_back({"box", Shape::box(Vec3(0.6f, 0.4f, 0.5f)), Quat::Identity(), 0.4f, 0.4f});
   // A capsule lying along x (its core runs along local y).
   out.push_back({"capsule", Shape::capsule(0.3f, 0.5f), Quat(Eigen::AngleAxisf(1.5707963f, Vec3::UnitZ())), 0.3f, 0.3f});
-  // A hull of 24 points on an irregular ellipsoid: faces and edges of mixed sizes, as a rock.
+  // A hull of 20 points, as a cut rock: hexagonal top and bottom faces (so "touching" touches) and
+  // an octagonal waist, turned against each other: faces and edges of mixed sizes.
   std::vector<Vec3> pts;
-  for (int i = 0; i < 24; ++i) {
-    const float t = float(i) * 2.3999632f, z = 1.0f - 2.0f * (float(i) + 0.5f) / 24.0f, r = std::sqrt(1.0f - z * z);
-    pts.emplace_back(0.6f * r * std::cos(t), 0.45f * z, 0.5f * r * std::sin(t));
+  for (int i = 0; i < 6; ++i) {
+    const float t = float(i) * 1.0471976f;
+    pts.emplace_back(0.35f * std::cos(t), 0.45f, 0.3f * std::sin(t));
+    pts.emplace_back(0.3f * std::cos(t + 0.5f), -0.45f, 0.35f * std::sin(t + 0.5f));
+  }
+  for (int i = 0; i < 8; ++i) {
+    const float t = float(i) * 0.7853982f + 0.2f;
+    pts.emplace_back(0.6f * std::cos(t), 0.1f * std::sin(3.0f * t), 0.5f * std::sin(t));
   }
   std::string error;
   auto hull = buildConvexHull(pts, &error);
