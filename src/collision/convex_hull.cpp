@@ -316,6 +316,24 @@ std::shared_ptr<ConvexHull> buildConvexHull(const std::vector<Vec3>& points, std
   hull->axisEdges = uint32_t(axes.size());
   hull->edges = axes;
   hull->edges.insert(hull->edges.end(), rest.begin(), rest.end());
+  // The faces beside each edge: a closed polyhedron has exactly two.
+  std::unordered_map<uint64_t, std::vector<uint32_t>> facesOf;
+  for (uint32_t fi = 0; fi < hull->faces.size(); ++fi) {
+    const auto& f = hull->faces[fi];
+    for (uint32_t k = 0; k < f.count; ++k) {
+      uint32_t a = hull->faceVertices[f.first + k], b = hull->faceVertices[f.first + (k + 1) % f.count];
+      if (a > b) std::swap(a, b);
+      facesOf[edgeKey(int(a), int(b))].push_back(fi);
+    }
+  }
+  for (const auto& e : hull->edges) {
+    const auto& fs = facesOf[edgeKey(int(e.first), int(e.second))];
+    if (fs.size() != 2) {
+      hull->edgeFaces.clear();
+      break;
+    }
+    hull->edgeFaces.emplace_back(fs[0], fs[1]);
+  }
   hull->centroid = shift.cast<float>();
   hull->volume = float(vol);
   hull->inertiaPerDensity = inertia.cast<float>();

@@ -10,6 +10,9 @@ constexpr uint32_t kBoxFaceVerts[24] = {0, 4, 6, 2, 1, 3, 7, 5, 0, 1, 5, 4, 2, 6
 // One edge along x, y and z first (the axis edges), then the other nine.
 constexpr std::pair<uint32_t, uint32_t> kBoxEdges[12] = {{0, 1}, {0, 2}, {0, 4}, {2, 3}, {4, 5}, {6, 7},
                                                          {1, 3}, {4, 6}, {5, 7}, {1, 5}, {2, 6}, {3, 7}};
+// The faces beside each edge of kBoxEdges (vertex i has x, y, z from bits 0, 1, 2).
+constexpr std::pair<uint32_t, uint32_t> kBoxEdgeFaces[12] = {{2, 4}, {0, 4}, {0, 2}, {3, 4}, {2, 5}, {3, 5},
+                                                             {1, 4}, {0, 5}, {1, 5}, {1, 2}, {0, 3}, {1, 3}};
 constexpr uint32_t kTriFaceVerts[6] = {0, 1, 2, 0, 2, 1};
 constexpr std::pair<uint32_t, uint32_t> kTriEdges[3] = {{0, 1}, {1, 2}, {2, 0}};
 }  // namespace
@@ -37,6 +40,7 @@ PolyView BoxPoly::view() const {
   p.edges = kBoxEdges;
   p.numEdges = 12;
   p.numAxisEdges = 3;
+  p.edgeFaces = kBoxEdgeFaces;
   return p;
 }
 
@@ -75,6 +79,7 @@ PolyView hullView(const ConvexHull& h) {
   p.edges = h.edges.data();
   p.numEdges = int(h.edges.size());
   p.numAxisEdges = int(h.axisEdges);
+  if (h.edgeFaces.size() == h.edges.size()) p.edgeFaces = h.edgeFaces.data();
   return p;
 }
 

@@ -26,6 +26,8 @@ struct PolyView {
   int numAxisEdges = 0;
   /// A triangle: its two faces are the same plane, so the faces alone do not bound a solid.
   bool flat = false;
+  /// The two faces beside each of the numEdges edges, or null (then every edge direction is tried).
+  const std::pair<uint32_t, uint32_t>* edgeFaces = nullptr;
 
   /// Smallest and largest projection of the vertices on d.
   void interval(const Vec3& d, float& lo, float& hi) const {

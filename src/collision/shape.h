@@ -31,6 +31,9 @@ struct ConvexHull {
   std::vector<std::pair<uint32_t, uint32_t>> edges;  ///< unique edges (vertex index pairs)
   /// The first axisEdges edges have distinct directions and cover every edge's direction.
   uint32_t axisEdges = 0;
+  /// The two faces beside each edge, in the order of `edges` (empty when some edge does not have
+  /// exactly two): the separating-axis test skips edge pairs that cannot meet (collide_polytope.cpp).
+  std::vector<std::pair<uint32_t, uint32_t>> edgeFaces;
   Vec3 centroid = Vec3::Zero();   ///< of the solid, in the input frame (vertices are already shifted by -centroid)
   float volume = 0.0f;
   Mat3 inertiaPerDensity = Mat3::Zero();  ///< about the centroid, for density 1
