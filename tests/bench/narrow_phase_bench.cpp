@@ -66,47 +66,44 @@ struct Setting {
 };
 constexpr Setting kSettings[] = {{"separated", 0.1f}, {"touching", -0.001f}, {"deep", -0.1f}};
 
-void collidePair(benchmark::State& state, Piece a, Piece b, float gap) {
-  // a below, b above, b turned 0.3 rad about y so no edges or faces line up exactly.
-  Transform xa, xb;
-  xa.q = a.q;
-  xb.q = Quat(Eigen::AngleAxisf(0.3f, Vec3::UnitY())) * b.q;
-  xb.p = Vec3(0.05f, a.up + b.down + gap, 0.03f);
+void timeCollide(benchmark::State& state, const Shape& a, const Transform& xa, const Shape& b, const Transform& xb) {
   Manifold m;
   int points = 0;
   for (auto _ : state) {
-    points = collide(a.shape, xa, b.shape, xb, kMargin, m);
+    points = collide(a, xa, b, xb, kMargin, m);
     benchmark::DoNotOptimize(m);
   }
   state.counters["points"] = points;
 }
 
+// a below, b above by `gap`, b turned 0.3 rad about y so no edges or faces line up exactly.
+void collidePair(benchmark::State& state, Piece a, Piece b, float gap) {
+  Transform xa, xb;
+  xa.q = a.q;
+  xb.q = Quat(Eigen::AngleAxisf(0.3f, Vec3::UnitY())) * b.q;
+  xb.p = Vec3(0.05f, a.up + b.down + gap, 0.03f);
+  timeCollide(state, a.shape, xa, b.shape, xb);
+}
+
+// A mesh is static and second: the shape rests on the triangle (in the plane y = 0) by `gap`.
+void collideOnTriangle(benchmark::State& state, Piece above, Piece tri, float gap) {
+  Transform xa, xb;
+  xa.q = Quat(Eigen::AngleAxisf(0.3f, Vec3::UnitY())) * above.q;
+  xa.p = Vec3(0.05f, above.down + gap, 0.03f);
+  timeCollide(state, above.shape, xa, tri.shape, xb);
+}
+
 void registerAll() {
   const std::vector<Piece> ps = pieces();
-  for (size_t i = 0; i < ps.size(); ++i)
+  const Piece tri = meshTriangle();
+  for (size_t i = 0; i < ps.size(); ++i) {
     for (size_t j = i; j < ps.size(); ++j)
       for (const Setting& s : kSettings)
         benchmark::RegisterBenchmark((ps[i].name + "-" + ps[j].name + "/" + s.name).c_str(), collidePair, ps[i], ps[j], s.gap);
-  // A mesh is static and second: the shape rests on the triangle.
-  const Piece tri = meshTriangle();
+  }
   for (const Piece& p : ps)
-    for (const Setting& s : kSettings) {
-      Piece above = p;
-      benchmark::RegisterBenchmark((p.name + "-" + tri.name + "/" + s.name).c_str(),
-                                   [above, tri, s](benchmark::State& st) {
-                                     // The triangle below: a = the shape above, b = the mesh under it.
-                                     Transform xa, xb;
-                                     xa.q = Quat(Eigen::AngleAxisf(0.3f, Vec3::UnitY())) * above.q;
-                                     xa.p = Vec3(0.05f, above.down + s.gap, 0.03f);
-                                     Manifold m;
-                                     int points = 0;
-                                     for (auto _ : st) {
-                                       points = collide(above.shape, xa, tri.shape, xb, kMargin, m);
-                                       benchmark::DoNotOptimize(m);
-                                     }
-                                     st.counters["points"] = points;
-                                   });
-    }
+    for (const Setting& s : kSettings)
+      benchmark::RegisterBenchmark((p.name + "-" + tri.name + "/" + s.name).c_str(), collideOnTriangle, p, tri, s.gap);
 }
 
 }  // namespace

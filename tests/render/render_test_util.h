@@ -1,6 +1,7 @@
 // Helpers shared by the renderer tests: small scenes and pixel probes.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -56,6 +57,30 @@ inline Pixel at(const std::vector<uint8_t>& rgba, int w, int x, int y) {
 inline bool isRed(Pixel p) { return p.r > 90 && p.r > p.g + 50 && p.r > p.b + 50; }
 /// Strongly green.
 inline bool isGreen(Pixel p) { return p.g > 90 && p.g > p.r + 50 && p.g > p.b + 50; }
+
+/// The renderer's performance target: stacks_2000 (2000 unit boxes in stacks of 10, 3 m apart) on
+/// the ground, with 240 steps of overlay history; the overlay itself off.
+inline FrameInput stacks2000Frame() {
+  FrameInput f;
+  f.instances.push_back(groundBox());
+  const int n = 2000, k = static_cast<int>(std::ceil(std::sqrt(std::ceil(n / 10.0))));
+  for (int i = 0; i < n; ++i) {
+    Instance b;
+    b.bodyId = static_cast<uint32_t>(i);
+    const int s = i / 10, h = i % 10;
+    b.position[0] = 3.f * static_cast<float>(s % k);
+    b.position[1] = 0.5f + 1.01f * static_cast<float>(h);
+    b.position[2] = 3.f * static_cast<float>(s / k);
+    f.instances.push_back(b);
+  }
+  for (int i = 0; i < 240; ++i) {
+    f.overlay.iterations.push_back(10.f);
+    f.overlay.collisionMs.push_back(2.f);
+    f.overlay.solveMs.push_back(4.f);
+  }
+  f.overlay.enabled = false;
+  return f;
+}
 
 /// Directory for test output files (created if needed).
 std::string tempDir();

@@ -454,23 +454,7 @@ TEST(RendererFrame, Stacks2000WithAndWithoutTheOverlay) {
   std::string error;
   auto r = Renderer::create(o, &error);
   ASSERT_TRUE(r) << error;
-  FrameInput f;
-  f.instances.push_back(groundBox());
-  const int n = 2000, k = static_cast<int>(std::ceil(std::sqrt(std::ceil(n / 10.0))));
-  for (int i = 0; i < n; ++i) {
-    Instance b;
-    b.bodyId = static_cast<uint32_t>(i);
-    const int s = i / 10, hgt = i % 10;
-    b.position[0] = 3.f * static_cast<float>(s % k);
-    b.position[1] = 0.5f + 1.01f * static_cast<float>(hgt);
-    b.position[2] = 3.f * static_cast<float>(s / k);
-    f.instances.push_back(b);
-  }
-  for (int i = 0; i < 240; ++i) {
-    f.overlay.iterations.push_back(10.f);
-    f.overlay.collisionMs.push_back(2.f);
-    f.overlay.solveMs.push_back(4.f);
-  }
+  FrameInput f = test::stacks2000Frame();
   std::vector<uint8_t> plain, charted;
   f.overlay.enabled = false;
   ASSERT_TRUE(r->render(f, plain, &error)) << error;
