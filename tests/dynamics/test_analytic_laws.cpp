@@ -330,3 +330,43 @@ TEST(AnalyticLaws, ARotatingPaddlePushesBoxesWithoutFeedingThemEnergy) {
     EXPECT_LE(energyPerTurn[2], energyPerTurn[0] * 1.5 + 1.0) << iterations << " iterations: the peak kinetic energy of a turn grows";
   }
 }
+
+// Disabled: known failure (issue 30). A gyroscope: a square plate (0.6 x 0.04 x 0.6 m, 1 kg) spun
+// at 60 rad/s about its normal, held by a ball joint on that axis 0.3 m from its centre, the axis
+// let go horizontal. It should precess at Ω = m g r / (I ω) = 0.82 rad/s (I = 2 a² m / 3 = 0.06;
+// L = I ω along +x, the torque -m g r along z, so the axis turns towards -z) with its axis near
+// horizontal. It sinks to hanging straight down within 3 s, turning at 1.05 rad/s: jointed bodies take an implicit-Euler gyroscopic step (integrator.h), which damps
+// the gyroscopic stiffness (it was chosen because an energy-keeping step spun up a pinned rod).
+TEST(AnalyticLaws, DISABLED_AGyroscopePrecessesAtMgrOverIOmega) {
+  for (const int iterations : {10, 4}) {
+    WorldSettings ws;
+    ws.iterations = iterations;
+    World w(ws);
+    const float a = 0.3f, r = 0.3f, spin = 60.0f;
+    const Vec3 pivot(0.0f, 5.0f, 0.0f);
+    BodyDef d;
+    d.shape = Shape::box(Vec3(a, 0.02f, a));
+    d.mass = 1.0f;
+    d.xf.q = Quat(Eigen::AngleAxisf(-0.5f * kPi, Vec3::UnitZ()));  // its normal (local y) along +x
+    d.xf.p = pivot + Vec3(r, 0.0f, 0.0f);
+    d.angularVelocity = d.xf.q * Vec3(0.0f, spin, 0.0f);
+    const uint32_t top = w.addBody(d);
+    addJointAt(w, JointType::Ball, kWorldBody, top, pivot);
+    const double expect = -9.81 * r / (2.0 * a * a / 3.0 * spin);  // rad/s about +y
+    double turned = 0.0, last = 0.0, lowest = 0.0;
+    for (int s = 0; s < 300; ++s) {
+      w.step();
+      const Vec3 arm = w.bodies().xf[top].p - pivot;
+      const double az = std::atan2(double(arm.z()), double(arm.x()));
+      double step = az - last;
+      if (step > M_PI) step -= 2.0 * M_PI;
+      if (step < -M_PI) step += 2.0 * M_PI;
+      turned += step;
+      last = az;
+      lowest = std::min(lowest, double(arm.y()));
+    }
+    // Over 5 s the nutation averages out: the mean rate within 3 %, the axis within 5 cm of level.
+    EXPECT_NEAR(turned / (300 * double(ws.dt)) / expect, 1.0, 0.03) << iterations << " iterations";
+    EXPECT_GT(lowest, -0.05) << iterations << " iterations: the axis sank";
+  }
+}
