@@ -207,12 +207,7 @@ TEST(AnalyticLaws, KinematicPlatformCarriesABoxWithoutSlip) {
     ws.iterations = iterations;
     World w(ws);
     addGround(w);
-    BodyDef p;
-    p.kind = BodyKind::Kinematic;
-    p.shape = Shape::box(Vec3(3.0f, 0.1f, 3.0f));
-    p.xf.p = Vec3(0.0f, 0.5f, 0.0f);
-    p.linearVelocity = Vec3(1.0f, 0.0f, 0.0f);
-    const uint32_t platform = w.addBody(p);
+    const uint32_t platform = addKinematicBox(w, Vec3(0.0f, 0.5f, 0.0f), Vec3(3.0f, 0.1f, 3.0f), Vec3(1.0f, 0.0f, 0.0f));
     const uint32_t box = addBox(w, Vec3(0.0f, 0.85f, 0.0f), Vec3::Constant(0.25f));
     for (int s = 0; s < 30; ++s) w.step();  // settles and takes up the platform's speed
     const Vec3 start = w.bodies().xf[box].p - w.bodies().xf[platform].p;
@@ -286,20 +281,12 @@ TEST(AnalyticLaws, ARotatingPaddlePushesBoxesWithoutFeedingThemEnergy) {
     ws.iterations = iterations;
     World w(ws);
     addGround(w);
-    BodyDef p;
-    p.kind = BodyKind::Kinematic;
-    p.shape = Shape::box(Vec3(2.0f, 0.3f, 0.1f));
-    p.xf.p = Vec3(0.0f, 0.3f, 0.0f);
-    p.angularVelocity = Vec3(0.0f, 2.0f, 0.0f);
-    w.addBody(p);
+    addKinematicBox(w, Vec3(0.0f, 0.3f, 0.0f), Vec3(2.0f, 0.3f, 0.1f), Vec3::Zero(), Vec3(0.0f, 2.0f, 0.0f));
     for (int side = 0; side < 4; ++side) {  // a 5 x 5 m pen keeps the boxes in the paddle's reach
-      BodyDef wall;
-      wall.kind = BodyKind::Static;
       const bool alongX = side < 2;
-      wall.shape = Shape::box(alongX ? Vec3(2.7f, 0.5f, 0.2f) : Vec3(0.2f, 0.5f, 2.7f));
       const float at = (side % 2 ? 1.0f : -1.0f) * 2.5f;
-      wall.xf.p = alongX ? Vec3(0.0f, 0.5f, at) : Vec3(at, 0.5f, 0.0f);
-      w.addBody(wall);
+      addStaticBox(w, alongX ? Vec3(0.0f, 0.5f, at) : Vec3(at, 0.5f, 0.0f),
+                   alongX ? Vec3(2.7f, 0.5f, 0.2f) : Vec3(0.2f, 0.5f, 2.7f));
     }
     std::vector<uint32_t> boxes;
     for (int i = 0; i < 24; ++i) {

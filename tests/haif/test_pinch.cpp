@@ -11,23 +11,6 @@ using namespace haif::test;
 
 namespace {
 
-uint32_t addKinematicBox(World& w, const Vec3& p, const Vec3& half, const Vec3& velocity) {
-  BodyDef d;
-  d.kind = BodyKind::Kinematic;
-  d.shape = Shape::box(half);
-  d.xf.p = p;
-  d.linearVelocity = velocity;
-  return w.addBody(d);
-}
-
-uint32_t addStaticBox(World& w, const Vec3& p, const Vec3& half) {
-  BodyDef d;
-  d.kind = BodyKind::Static;
-  d.shape = Shape::box(half);
-  d.xf.p = p;
-  return w.addBody(d);
-}
-
 // A small box sunk under the foot of a static wall standing on the ground: the wall's face pushes it
 // down, the ground up. Nothing in the scene moves; returns the box's fastest speed over 600 steps.
 float fastestUnderWallFoot(bool resolvePinches, uint32_t* pinchedSteps) {

@@ -38,12 +38,7 @@ TEST(SpeedBound, LimitGrowsWithStartSpeedFallAndKinematicSurfaces) {
   const float fall = std::sqrt(2.0f * 9.81f * (20.0f + 2.0f * reach));
   EXPECT_NEAR(w.speedLimit(), factor * (3.0f + fall) + floor, 0.05f * fall * factor);
   // A kinematic plate sweeping at 7 m/s may hit bodies at twice its speed.
-  BodyDef k;
-  k.kind = BodyKind::Kinematic;
-  k.shape = Shape::box(Vec3(1.0f, 0.1f, 1.0f));
-  k.xf.p = Vec3(50.0f, 5.0f, 0.0f);
-  k.linearVelocity = Vec3(7.0f, 0.0f, 0.0f);
-  w.addBody(k);
+  addKinematicBox(w, Vec3(50.0f, 5.0f, 0.0f), Vec3(1.0f, 0.1f, 1.0f), Vec3(7.0f, 0.0f, 0.0f));
   w.step();
   EXPECT_NEAR(w.speedLimit(), factor * (3.0f + fall + 14.0f) + floor, 0.05f * fall * factor);
 }
@@ -76,12 +71,7 @@ TEST(SpeedBound, CrushedBoxIsNotShotOut) {
   World w;
   addGround(w);
   const uint32_t box = addBox(w, Vec3(0.0f, 0.5f, 0.0f), Vec3::Constant(0.5f), 1.0f);
-  BodyDef slab;
-  slab.kind = BodyKind::Kinematic;
-  slab.shape = Shape::box(Vec3(3.0f, 0.25f, 3.0f));
-  slab.xf.p = Vec3(0.0f, 1.5f, 0.0f);
-  slab.linearVelocity = Vec3(0.0f, -2.0f, 0.0f);
-  w.addBody(slab);
+  addKinematicBox(w, Vec3(0.0f, 1.5f, 0.0f), Vec3(3.0f, 0.25f, 3.0f), Vec3(0.0f, -2.0f, 0.0f));
   float fastest = 0.0f;
   const float reach = std::sqrt(3.0f) * 0.5f;
   for (int i = 0; i < 90; ++i) {

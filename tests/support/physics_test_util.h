@@ -31,6 +31,27 @@ inline uint32_t addBox(World& w, const Vec3& p, const Vec3& half = Vec3::Constan
   return w.addBody(d);
 }
 
+/// A static box of half extents `half` at p.
+inline uint32_t addStaticBox(World& w, const Vec3& p, const Vec3& half) {
+  BodyDef d;
+  d.kind = BodyKind::Static;
+  d.shape = Shape::box(half);
+  d.xf.p = p;
+  return w.addBody(d);
+}
+
+/// A kinematic box of half extents `half` at p, moving at `velocity` and turning at `spin` (rad/s).
+inline uint32_t addKinematicBox(World& w, const Vec3& p, const Vec3& half, const Vec3& velocity,
+                                const Vec3& spin = Vec3::Zero()) {
+  BodyDef d;
+  d.kind = BodyKind::Kinematic;
+  d.shape = Shape::box(half);
+  d.xf.p = p;
+  d.linearVelocity = velocity;
+  d.angularVelocity = spin;
+  return w.addBody(d);
+}
+
 inline uint32_t addSphere(World& w, const Vec3& p, float r = 0.5f, float mass = 1.0f) {
   BodyDef d;
   d.shape = Shape::sphere(r);
