@@ -380,9 +380,9 @@ void World::narrowPhase() {
       // a body resting on a static one closes by g dt² a step before the solver stops it.
       // A sphere or capsule rolls: its contact stays under its centre while a point fixed in it turns
       // away, and the turned normal pushed a ball rolling at 1 cm/s up to 14 cm/s in 5 s. Those
-      // pairs are cheap to collide and always made again.
-      if (settings_.reuseManifolds && rel < restingClosing && !rolls(shapes_[c.a]) && !rolls(shapes_[c.b]) &&
-          refreshManifold(c.cache, xa, xb, reuseLimits, c.manifold)) {
+      // pairs are cheap to collide and always made again (nor remembered).
+      const bool reusable = settings_.reuseManifolds && !rolls(shapes_[c.a]) && !rolls(shapes_[c.b]);
+      if (reusable && rel < restingClosing && refreshManifold(c.cache, xa, xb, reuseLimits, c.manifold)) {
         reusedFlag_[ci] = 1;
         updateAnchor(c, xa, xb);
         noteEdge(c, edge, againstImmovable);
@@ -390,7 +390,7 @@ void World::narrowPhase() {
       }
       const Manifold old = c.manifold;
       collide(shapes_[c.a], xa, shapes_[c.b], xb, settings_.contactMargin + rel, c.manifold);
-      if (settings_.reuseManifolds) rememberManifold(c.manifold, xa, xb, c.cache);
+      if (reusable) rememberManifold(c.manifold, xa, xb, c.cache);
       // Carry accumulated normal impulses over to the points that touch the same features; when
       // the feature ids changed (a reference face switched), fall back to the nearest old point.
       // Friction lives at the manifold's centre and carries over as it is.
