@@ -1,5 +1,6 @@
 #include "tools/staged_output.h"
 
+#include "tools/atomic_file.h"
 #include "tools/interrupts.h"
 
 #include <cerrno>
@@ -125,7 +126,7 @@ bool StagedFolder::open(const std::string& target, const std::vector<std::string
   }
   target_ = t.string();
   markers_ = markers;
-  staging_ = (t.parent_path() / ("." + t.filename().string() + ".tmp" + std::to_string(::getpid()))).string();
+  staging_ = temporaryPathFor(target_);  // the same .NAME.tmpPID beside it as a file written atomically
   fs::remove_all(staging_, ec);  // left by an earlier process of the same id that was killed
   registerTemporary(staging_);
   if (!fs::create_directory(staging_, ec)) {
