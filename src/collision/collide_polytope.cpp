@@ -23,6 +23,9 @@ struct GaussEdge {
   Vec3 p, dir;     // its first vertex and its direction
 };
 constexpr float kEdgeRelTol = 0.02f;
+// How much farther apart than their separation and the margin two edges may be and still make the
+// contact (m).
+constexpr float kEdgeGapTol = 1e-3f;
 constexpr int kMaxIncident = 64;
 
 // Among the edges parallel to edge e, the one farthest along d (its midpoint).
@@ -39,6 +42,13 @@ int supportingEdge(const PolyView& P, int e, const Vec3& d) {
     if (x > bestDot) { bestDot = x; best = k; }
   }
   return best;
+}
+
+// How far B stays beyond A along L (A's frame; B turned by R and moved by t): negative overlaps.
+float supportSeparation(const PolyView& A, const PolyView& B, const Mat3& R, const Vec3& t, const Vec3& L) {
+  float aLo, aHi;
+  A.interval(L, aLo, aHi);
+  return B.minDot(R.transpose() * L) + t.dot(L) - aHi;
 }
 
 }  // namespace
@@ -105,7 +115,14 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
         if (l2 < 1e-8f * da.squaredNorm() * g.dir.squaredNorm()) continue;  // parallel edges
         L /= std::sqrt(l2);
         if (L.dot(pa) < 0.0f) L = -L;  // out of A (its origin is inside it)
-        const float s = L.dot(g.p - pa);
+        float s = L.dot(g.p - pa);
+        if (s <= sepE && s <= margin) continue;
+        // The two edges' lines are this far apart; that is the shapes' separation along L only when
+        // the arcs truly cross. Where they barely do (a hull lying flat on a face: its face's
+        // negated normal is the other's face normal to float precision) the sign tests are noise,
+        // and over a long edge a tilt of 1e-5 put a hull 6 mm above a 1000 m ground box it rested
+        // on: the edge contact won and made one point 250 m away. The supports decide instead.
+        s = supportSeparation(A, B, R, t, L);
         if (s > margin) return 0;
         if (s > sepE) { sepE = s; edgeA = i; edgeB = j; edgeAxis = L; }
       }
@@ -149,10 +166,17 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
     float s, u;
     closestSegmentSegment(a0, a1, b0, b1, s, u);
     const Vec3 qa = a0 + s * (a1 - a0), qb = b0 + u * (b1 - b0);
+    // Edges that touch are |sepE| apart; ones farther apart than the margin allows are not the
+    // touching ones, and a point between them would push from where nothing touches.
+    const float gap = std::fabs(sepE) + margin + kEdgeGapTol;
+    if ((qb - qa).squaredNorm() > gap * gap) return -1;
     const uint32_t id = 0x40000000u | ((uint32_t(edgeA) & 0x7FFFu) << 15) | (uint32_t(edgeB) & 0x7FFFu);
     return writeSingle(m, xa.apply(0.5f * (qa + qb)), Ra * edgeAxis, -sep, id);
   };
-  if (edgeA >= 0 && sepE > faceSep + kEdgeAbsTol + kEdgeRelTol * std::fabs(faceSep)) return edgeContact(sepE);
+  if (edgeA >= 0 && sepE > faceSep + kEdgeAbsTol + kEdgeRelTol * std::fabs(faceSep)) {
+    const int count = edgeContact(sepE);
+    if (count >= 0) return count;
+  }
 
   // Reference face (in A's frame) and the incident face: the other's most anti-parallel face.
   const PolyView& ref = refIsB ? B : A;
@@ -218,7 +242,7 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
   }
   // Clipping can leave nothing when the faces only meet at a rim (thin triangles): use the edges then.
   // No axis is deeper than the face axis's separation (SAT keeps the largest), so neither is the contact.
-  if (buf.count == 0 && edgeA >= 0 && sepE <= margin) return edgeContact(std::max(sepE, faceSep));
+  if (buf.count == 0 && edgeA >= 0 && sepE <= margin) return std::max(0, edgeContact(std::max(sepE, faceSep)));
   return writeManifold(buf, m);
 }
 

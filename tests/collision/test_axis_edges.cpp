@@ -121,6 +121,56 @@ TEST(AxisEdges, PrunedEdgePairsOfRandomHullsFindWhatEveryPairFinds) {
   EXPECT_GT(touching, 600) << "test set-up: many trials must touch";
 }
 
+
+TEST(AxisEdges, AHullLyingFlatOnAWideGroundBoxTouchesWhereItLies) {
+  // A hull resting on a face on a 1000 m ground box, one bottom edge within a degree of the
+  // ground's rim edges, tilted by float noise. Its face's negated normal and the ground's top normal
+  // are one point of the Gauss map, so whether the arcs of that edge and a rim edge "cross" is
+  // rounding; and the cross product of two nearly parallel edges turns a 1e-7 tilt into a 1e-5 one,
+  // which over the 500 m to the rim made the two edge lines 6 mm apart. Taken for the shapes'
+  // separation, that edge pair beat the face: a hull resting on the ground got one contact point
+  // 250 m away (in a pit of 1200 bodies one was pushed through the floor at 37 m/s). Every point
+  // must lie under the hull, level with the ground's top.
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  const BoxPoly ground(Vec3(500.0f, 1.0f, 500.0f));
+  Transform xg;
+  xg.p = Vec3(0.0f, -1.0f, 0.0f);
+  const Vec3 corners[4] = {Vec3(0.0f, 0.0f, 0.0f), Vec3(0.28f, 0.0f, 0.0f), Vec3(0.1f, 0.0f, 0.2f), Vec3(0.1f, 0.2f, 0.07f)};
+  int poses = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    // The hull is built turned by a random rotation and laid back flat by its inverse, so its face
+    // normals and edges are level only to rounding, as in a simulated pile; then yawed to within
+    // 1.2 degrees of a rim direction (x or z).
+    const Quat turn = Quat(Eigen::AngleAxisf(3.0f * u(rng), Vec3(u(rng), u(rng), u(rng)).normalized()));
+    std::vector<Vec3> pts;
+    for (const Vec3& c : corners) pts.push_back(turn * c);
+    const auto hull = buildConvexHull(pts, nullptr);
+    ASSERT_TRUE(hull);
+    const PolyView H = hullView(*hull);
+    const float yaw = 0.5f * float(M_PI) * float(trial % 4) + 0.02f * u(rng);
+    Transform xh;
+    xh.q = Quat(Eigen::AngleAxisf(yaw, Vec3::UnitY())) * turn.conjugate();
+    xh.q.normalize();
+    const float gap = 0.004f * std::fabs(u(rng));
+    float lowest = 1e30f;
+    for (const Vec3& v : hull->vertices) lowest = std::min(lowest, (xh.q * v).y());
+    xh.p = Vec3(10.0f * u(rng), gap - lowest, 10.0f * u(rng));
+    Manifold m;
+    collidePolyPoly(ground.view(), xg, H, xh, 0.02f, m);
+    ++poses;
+    ASSERT_GT(m.count, 0) << "trial " << trial << ": resting " << gap << " m above the ground";
+    for (int k = 0; k < m.count; ++k) {
+      const Vec3& p = m.points[k].position;
+      EXPECT_LT(Vec3(p.x() - xh.p.x(), 0.0f, p.z() - xh.p.z()).norm(), 0.3f)
+          << "trial " << trial << ": a point far from where the hull lies, at " << p.transpose();
+      EXPECT_NEAR(m.points[k].depth, -gap, 1e-3f) << "trial " << trial;
+      EXPECT_GT(m.points[k].normal.y(), 0.999f) << "trial " << trial;
+    }
+  }
+  EXPECT_EQ(poses, 400);
+}
+
 }  // namespace
 }  // namespace detail
 }  // namespace haif
