@@ -6,6 +6,8 @@
 #include "collision/polytope.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 
 namespace haif {
 namespace detail {
@@ -18,10 +20,27 @@ constexpr float kEdgeAbsTol = 1e-3f;
 // Edges of the second polyhedron kept turned into the first one's frame for the pruned edge test
 // (on the stack: collide never allocates); a hull with more takes the unpruned test.
 constexpr int kMaxGaussEdges = 256;
-struct GaussEdge {
-  Vec3 c, d, dxc;  // the negated normals of the two faces beside the edge, and d × c
-  Vec3 p, dir;     // its first vertex and its direction
+// Their Gauss arcs are tested 8 edges at a time: per edge the negated normals c and d of its two
+// faces and d × c, one array per coordinate (lanes past the last edge are zero, so they never pass).
+constexpr int kGaussLanes = 8;
+using GaussF = float __attribute__((vector_size(kGaussLanes * sizeof(float))));
+using GaussI = int32_t __attribute__((vector_size(kGaussLanes * sizeof(float))));
+struct GaussArcs {
+  alignas(32) float c[3][kMaxGaussEdges], d[3][kMaxGaussEdges], dxc[3][kMaxGaussEdges];
+  Vec3 p[kMaxGaussEdges], dir[kMaxGaussEdges];  // each edge's first vertex and direction
 };
+inline GaussF loadLanes(const float* x) {
+  GaussF v;
+  std::memcpy(&v, x, sizeof(v));
+  return v;
+}
+inline bool anyLane(GaussI m) {
+  uint64_t w[kGaussLanes / 2];
+  std::memcpy(w, &m, sizeof(w));
+  uint64_t any = 0;
+  for (const uint64_t x : w) any |= x;
+  return any != 0;
+}
 constexpr float kEdgeRelTol = 0.02f;
 // How much farther apart than their separation and the margin two edges may be and still make the
 // contact (m).
@@ -90,41 +109,55 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
   Vec3 edgeAxis = Vec3::Zero();
   if (A.edgeFaces && B.edgeFaces && B.numEdges <= kMaxGaussEdges) {
     // B's edges in A's frame once: each with its two face normals negated (the Gauss map of -B).
-    GaussEdge gb[kMaxGaussEdges];
-    for (int j = 0; j < B.numEdges; ++j) {
-      GaussEdge& g = gb[j];
-      g.c = -(R * B.faces[B.edgeFaces[j].first].normal);
-      g.d = -(R * B.faces[B.edgeFaces[j].second].normal);
-      g.dxc = g.d.cross(g.c);
-      g.p = R * B.verts[B.edges[j].first] + t;
-      g.dir = R * (B.verts[B.edges[j].second] - B.verts[B.edges[j].first]);
+    GaussArcs gb;
+    const int lanesB = (B.numEdges + kGaussLanes - 1) / kGaussLanes * kGaussLanes;
+    for (int j = 0; j < lanesB; ++j) {
+      Vec3 c = Vec3::Zero(), d = Vec3::Zero(), dxc = Vec3::Zero();
+      if (j < B.numEdges) {
+        c = -(R * B.faces[B.edgeFaces[j].first].normal);
+        d = -(R * B.faces[B.edgeFaces[j].second].normal);
+        dxc = d.cross(c);
+        gb.p[j] = R * B.verts[B.edges[j].first] + t;
+        gb.dir[j] = R * (B.verts[B.edges[j].second] - B.verts[B.edges[j].first]);
+      }
+      for (int k = 0; k < 3; ++k) {
+        gb.c[k][j] = c[k];
+        gb.d[k][j] = d[k];
+        gb.dxc[k][j] = dxc[k];
+      }
     }
     for (int i = 0; i < A.numEdges; ++i) {
       const Vec3& a = A.faces[A.edgeFaces[i].first].normal;
       const Vec3& b = A.faces[A.edgeFaces[i].second].normal;
       const Vec3 pa = A.verts[A.edges[i].first], da = A.verts[A.edges[i].second] - pa;
       const Vec3 bxa = b.cross(a);
-      for (int j = 0; j < B.numEdges; ++j) {
-        const GaussEdge& g = gb[j];
-        const float cba = g.c.dot(bxa), dba = g.d.dot(bxa);
-        if (!(cba * dba < 0.0f)) continue;
-        const float adc = a.dot(g.dxc), bdc = b.dot(g.dxc);
-        if (!(adc * bdc < 0.0f && cba * bdc > 0.0f)) continue;
-        Vec3 L = da.cross(g.dir);
-        const float l2 = L.squaredNorm();
-        if (l2 < 1e-8f * da.squaredNorm() * g.dir.squaredNorm()) continue;  // parallel edges
-        L /= std::sqrt(l2);
-        if (L.dot(pa) < 0.0f) L = -L;  // out of A (its origin is inside it)
-        float s = L.dot(g.p - pa);
-        if (s <= sepE && s <= margin) continue;
-        // The two edges' lines are this far apart; that is the shapes' separation along L only when
-        // the arcs truly cross. Where they barely do (a hull lying flat on a face: its face's
-        // negated normal is the other's face normal to float precision) the sign tests are noise,
-        // and over a long edge a tilt of 1e-5 put a hull 6 mm above a 1000 m ground box it rested
-        // on: the edge contact won and made one point 250 m away. The supports decide instead.
-        s = supportSeparation(A, B, R, t, L);
-        if (s > margin) return 0;
-        if (s > sepE) { sepE = s; edgeA = i; edgeB = j; edgeAxis = L; }
+      for (int j0 = 0; j0 < lanesB; j0 += kGaussLanes) {
+        auto dot = [&](const float (*x)[kMaxGaussEdges], const Vec3& v) {
+          return loadLanes(x[0] + j0) * v.x() + loadLanes(x[1] + j0) * v.y() + loadLanes(x[2] + j0) * v.z();
+        };
+        const GaussF cba = dot(gb.c, bxa), dba = dot(gb.d, bxa), adc = dot(gb.dxc, a), bdc = dot(gb.dxc, b);
+        const GaussF zero = {};
+        const GaussI cross = (cba * dba < zero) & (adc * bdc < zero) & (cba * bdc > zero);
+        if (!anyLane(cross)) continue;
+        for (int lane = 0; lane < kGaussLanes; ++lane) {
+          if (!cross[lane]) continue;
+          const int j = j0 + lane;
+          Vec3 L = da.cross(gb.dir[j]);
+          const float l2 = L.squaredNorm();
+          if (l2 < 1e-8f * da.squaredNorm() * gb.dir[j].squaredNorm()) continue;  // parallel edges
+          L /= std::sqrt(l2);
+          if (L.dot(pa) < 0.0f) L = -L;  // out of A (its origin is inside it)
+          float s = L.dot(gb.p[j] - pa);
+          if (s <= sepE && s <= margin) continue;
+          // The two edges' lines are this far apart; that is the shapes' separation along L only
+          // when the arcs truly cross. Where they barely do (a hull lying flat on a face: its face's
+          // negated normal is the other's face normal to float precision) the sign tests are noise,
+          // and over a long edge a tilt of 1e-5 put a hull 6 mm above a 1000 m ground box it rested
+          // on: the edge contact won and made one point 250 m away. The supports decide instead.
+          s = supportSeparation(A, B, R, t, L);
+          if (s > margin) return 0;
+          if (s > sepE) { sepE = s; edgeA = i; edgeB = j; edgeAxis = L; }
+        }
       }
     }
   } else {
