@@ -16,9 +16,11 @@ void RunMetrics::begin(const World& world, uint64_t plannedSteps) {
 bool RunMetrics::afterStep(const World& world) {
   ++steps_;
   const BodyStore& b = world.bodies();
+  // A hull's smallest extent is a pass over its faces and vertices: once per body, not per contact.
+  for (uint32_t i = uint32_t(extent_.size()); i < world.bodyCount(); ++i) extent_.push_back(smallestExtent(world.shape(i)));
   for (const Contact& c : world.contacts()) {
     if (!c.touching()) continue;
-    const float ext = std::min(smallestExtent(world.shape(c.a)), smallestExtent(world.shape(c.b)));
+    const float ext = std::min(extent_[c.a], extent_[c.b]);
     for (int i = 0; i < c.manifold.count; ++i) {
       const double d = std::max(0.0f, c.manifold.points[i].depth);
       maxPen_ = std::max(maxPen_, d);

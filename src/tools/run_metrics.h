@@ -31,6 +31,7 @@ class RunMetrics {
 
  private:
   std::vector<float> startY_;
+  std::vector<float> extent_;  // per body: smallestExtent of its shape
   uint64_t plannedSteps_ = 0, steps_ = 0;
   double maxPen_ = 0, maxPenFrac_ = 0, penSq_ = 0;
   uint64_t penCount_ = 0;
