@@ -56,6 +56,31 @@ TEST(CapsuleBox, LyingOnBoxGivesTwoPoints) {
   expectAll(m, -Vec3::UnitY(), -0.05f, 1e-5f);
 }
 
+TEST(CapsuleBox, TiltedOverAFaceGetsAPointAtEachEndWithinTheMargin) {
+  // A capsule (r 0.124, core 0.39 m) tilted 11 degrees, its low end 0.03 m into the ground and the
+  // high end within the margin above it: both ends are points, each at its own depth, or the high
+  // end swings into the ground unseen (0.27 m in a pour, where only a level capsule got two).
+  const Shape ground = Shape::box(Vec3(50, 1, 50));
+  const Shape cap = Shape::capsule(0.124f, 0.195f);
+  const float tilt = 0.2f, r = 0.124f, hh = 0.195f;
+  const Quat q = axisAngle(Vec3::UnitZ(), tilt) * kAlongX;  // axis along x, raised at +x
+  const float lowEnd = -0.03f, rise = 2.0f * hh * std::sin(tilt);
+  const Vec3 centre(0.3f, 1.0f + lowEnd + r + 0.5f * rise, 0.2f);  // ground top at y = 1
+  Manifold m;
+  ASSERT_EQ(collideBoth(ground, xf(Vec3::Zero()), cap, xf(centre, q), 0.1f, m), 2);
+  for (int i = 0; i < 2; ++i) expectVecNear(m.points[i].normal, Vec3::UnitY(), 1e-5f);  // the face's
+  float lo = 1e30f, hi = -1e30f;
+  for (int i = 0; i < 2; ++i) {
+    lo = std::min(lo, m.points[i].depth);
+    hi = std::max(hi, m.points[i].depth);
+  }
+  EXPECT_NEAR(hi, -lowEnd, 1e-4f);
+  EXPECT_NEAR(lo, -lowEnd - rise, 1e-4f);
+  // Tilted so the high end is beyond the margin: only the low end.
+  ASSERT_EQ(collide(ground, xf(Vec3::Zero()), cap, xf(centre, q), rise - 0.035f, m), 1);
+  EXPECT_NEAR(m.points[0].depth, -lowEnd, 1e-4f);
+}
+
 TEST(CapsuleBox, OverhangingTheEdgeClipsToTheFace) {
   const Shape box = Shape::box(Vec3(1, 0.5f, 1));
   const Shape cap = Shape::capsule(0.25f, 1.0f);
