@@ -24,22 +24,33 @@ class BroadPhase {
   }
   bool fatOverlap(uint32_t a, uint32_t b) const { return fatAabb(a).overlaps(fatAabb(b)); }
 
+  /// Bodies moved since the last clearMoved(), in the order they moved.
+  const std::vector<uint32_t>& moved() const { return moved_; }
+  /// Calls onPair(m, other) for each candidate pair moved body m's query reports. Every pair that
+  /// involves a moved body is reported by exactly one moved body's query (two moved bodies: by the
+  /// later index), so querying all of moved() finds each once. Read-only: moved bodies may be
+  /// queried concurrently.
+  template <class F>
+  void queryMoved(uint32_t m, F&& onPair) const {
+    const Aabb& box = fatAabb(m);
+    auto visit = [&](uint32_t other) {
+      if (other == m) return;
+      if (movedFlag_[other] && other < m) return;  // that body's own query reports the pair
+      onPair(m, other);
+    };
+    movingTree_.query(box, visit);
+    if (!isStatic_[m]) staticTree_.query(box, visit);
+  }
+  void clearMoved() {
+    for (uint32_t m : moved_) movedFlag_[m] = 0;
+    moved_.clear();
+  }
   /// Reports candidate pairs (a, b) that involve a body moved since the last call, each pair once,
   /// in a deterministic order; then forgets the moves.
   template <class F>
   void findNewPairs(F&& onPair) {
-    for (uint32_t m : moved_) {
-      const Aabb& box = fatAabb(m);
-      auto visit = [&](uint32_t other) {
-        if (other == m) return;
-        if (movedFlag_[other] && other < m) return;  // that body's own query reports the pair
-        onPair(m, other);
-      };
-      movingTree_.query(box, visit);
-      if (!isStatic_[m]) staticTree_.query(box, visit);
-    }
-    for (uint32_t m : moved_) movedFlag_[m] = 0;
-    moved_.clear();
+    for (uint32_t m : moved_) queryMoved(m, onPair);
+    clearMoved();
   }
 
   const DynamicTree& movingTree() const { return movingTree_; }

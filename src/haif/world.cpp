@@ -36,6 +36,8 @@ double msSince(Clock::time_point t0) {
 constexpr uint32_t kBatchRows = 1024;
 // Islands with at least this many contacts have their top-down order sorted in parallel.
 constexpr uint32_t kParallelSortContacts = 8192;
+// Moved bodies whose broad-phase queries one task runs: a query is a few microseconds.
+constexpr uint32_t kPairQueryGrain = 64;
 
 /// An old contact point this close (m) to a new one passes on its impulse when ids do not match.
 constexpr float kWarmStartMatchDistance = 0.02f;
@@ -285,22 +287,46 @@ void World::updateBroadPhase() {
     const Vec3 d = dt * bodies_.v[i];
     broadPhase_.update(i, bounds_[i].merged({bounds_[i].lo + d, bounds_[i].hi + d}));
   }
-  uint32_t created = 0;
-  broadPhase_.findNewPairs([&](uint32_t a, uint32_t b) {
+  // New pairs: the moved bodies' queries run in parallel, a list per run of kPairQueryGrain of
+  // them (a churning pile re-inserts most of its bodies every step, and the queries were a sixth
+  // of a swept pit's step, serial); the lists are then joined in order, so the contacts are made
+  // in the same order whatever the threads.
+  auto wanted = [&](uint32_t a, uint32_t b) {
     const bool dynA = bodies_.kind[a] == BodyKind::Dynamic, dynB = bodies_.kind[b] == BodyKind::Dynamic;
-    if (!dynA && !dynB) return;  // static/kinematic pairs need no contact
+    if (!dynA && !dynB) return false;  // static/kinematic pairs need no contact
     const uint64_t key = PairMap::key(a, b);
-    if (jointPairs_.find(key) != PairMap::kNotFound) return;  // jointed bodies do not collide
-    if (pairs_.find(key) != PairMap::kNotFound) return;
-    Contact c;
-    c.a = std::min(a, b);
-    c.b = std::max(a, b);
-    c.friction = std::sqrt(bodies_.friction[a] * bodies_.friction[b]);
-    c.restitution = std::max(bodies_.restitution[a], bodies_.restitution[b]);
-    pairs_.set(key, static_cast<uint32_t>(contacts_.size()));
-    contacts_.push_back(c);
-    ++created;
+    if (jointPairs_.find(key) != PairMap::kNotFound) return false;  // jointed bodies do not collide
+    return pairs_.find(key) == PairMap::kNotFound;
+  };
+  const std::vector<uint32_t>& moved = broadPhase_.moved();
+  const uint32_t movedCount = uint32_t(moved.size());
+  const uint32_t runs = (movedCount + kPairQueryGrain - 1) / kPairQueryGrain;
+  if (newPairRuns_.size() < runs) newPairRuns_.resize(runs);
+  parallelFor(runs, 1, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t r = begin; r < end; ++r) {
+      std::vector<std::pair<uint32_t, uint32_t>>& found = newPairRuns_[r];
+      found.clear();
+      const uint32_t last = std::min(movedCount, (r + 1) * kPairQueryGrain);
+      for (uint32_t i = r * kPairQueryGrain; i < last; ++i)
+        broadPhase_.queryMoved(moved[i], [&](uint32_t a, uint32_t b) {
+          if (wanted(a, b)) found.emplace_back(a, b);
+        });
+    }
   });
+  uint32_t created = 0;
+  for (uint32_t r = 0; r < runs; ++r) {
+    for (const auto& [a, b] : newPairRuns_[r]) {
+      Contact c;
+      c.a = std::min(a, b);
+      c.b = std::max(a, b);
+      c.friction = std::sqrt(bodies_.friction[a] * bodies_.friction[b]);
+      c.restitution = std::max(bodies_.restitution[a], bodies_.restitution[b]);
+      pairs_.set(PairMap::key(a, b), static_cast<uint32_t>(contacts_.size()));
+      contacts_.push_back(c);
+      ++created;
+    }
+  }
+  broadPhase_.clearMoved();
   stats_.newPairs = created;
 }
 

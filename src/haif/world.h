@@ -196,6 +196,7 @@ class World {
   BroadPhase broadPhase_;
   PairMap pairs_;
   std::vector<Contact> contacts_;
+  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> newPairRuns_;  // per run of moved bodies: pairs found
   std::vector<uint8_t> wakeFlag_;     // per contact: touching state changed this step
   std::vector<uint8_t> reusedFlag_;   // per contact: its manifold was reused this step
   std::vector<ContactEdge> contactEdges_;  // per contact: its bodies and point count, from the narrow phase on
