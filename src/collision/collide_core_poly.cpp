@@ -92,6 +92,13 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
   const Vec3 c0 = xp.applyInverse(w0), c1 = xp.applyInverse(w1);
   const Vec3 seg = c1 - c0;
   const bool isSeg = seg.squaredNorm() > 1e-12f;
+  // The whole core beyond a face plane by more than r + margin: no point can be within the margin.
+  // Most pairs the broad phase keeps are this far apart, and the closest-feature search below
+  // costs a pass over every face and edge.
+  for (int f = 0; f < P.numFaces; ++f) {
+    const ConvexHull::Face& F = P.faces[f];
+    if (std::min(F.normal.dot(c0), F.normal.dot(c1)) - F.offset - r > margin) return 0;
+  }
 
   if (!segmentPierces(P, c0, c1)) {
     // Closest points: endpoint-face, endpoint-edge and segment-edge cover every pair of features.
