@@ -66,11 +66,27 @@ class JointTree {
     return blocks_[b.blockStart + row * (row - 1) / 2 + col].a;
   }
   int rowsAt(const BodyNode& b, uint32_t pos) const { return order_[nodeOfJoint_[clique_[b.cliqueStart + pos]]].m; }
+  // What the structure of the tree depends on, per joint: its bodies, which of them are solved, rows.
+  struct JointShape {
+    uint32_t a = 0, b = 0;
+    uint8_t dynA = 0, dynB = 0;
+    int32_t rows = 0;
+    bool operator==(const JointShape& o) const {
+      return a == o.a && b == o.b && dynA == o.dynA && dynB == o.dynB && rows == o.rows;
+    }
+  };
+  /// Records js's shapes; true when they are those of the last build.
+  bool sameStructure(const JointConstraint* js, uint32_t n);
+  /// Picks the tree joints (sets inTree), orders them and sizes the factor buffers.
+  void buildStructure(JointConstraint* js, uint32_t n);
   void assemble(const JointConstraint* js);
   void factor();
   void solveInPlace();  // rhs_ <- A^-1 rhs_ with the factors
 
   uint32_t loops_ = 0;
+  bool built_ = false;
+  std::vector<JointShape> shape_;   // per joint of the last build
+  std::vector<uint8_t> inTree_;     // per joint of the last build: its inTree
   std::vector<Incidence> inc_;
   std::vector<BodyNode> bodies_;
   std::vector<uint32_t> uf_;
