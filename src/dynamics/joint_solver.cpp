@@ -48,6 +48,9 @@ JointGeometry geometryOf(const BodyStore& bodies, const JointDef& d) {
   g.rB = xb.rotate(d.localAnchorB);
   g.pA = xa.p + g.rA;
   g.pB = xb.p + g.rB;
+  // Ball and distance joints hold points only: their frames are never read (the frames were a
+  // seventh of a ball-joint grid's step).
+  if (d.type == JointType::Ball || d.type == JointType::Distance) return g;
   g.fA = (xa.q * d.localFrameA).normalized();
   g.fB = (xb.q * d.localFrameB).normalized();
   g.axisA = g.fA * Vec3::UnitX();
@@ -173,7 +176,9 @@ JointDef jointAtWorld(JointType type, uint32_t bodyA, uint32_t bodyB, const Tran
 }
 
 void invertSymmetric(const double* K, int m, double tol, double* inverse) {
-  double L[kJointBlockRows][kJointBlockRows] = {}, D[kJointBlockRows];
+  // Only the entries written below are read (L on and below its diagonal, X likewise): no zeroing
+  // of the 6 x 6 arrays for a ball joint's 3 x 3 block.
+  double L[kJointBlockRows][kJointBlockRows], D[kJointBlockRows];
   for (int k = 0; k < m; ++k) {
     double d = K[k * m + k];
     for (int j = 0; j < k; ++j) d -= L[k][j] * L[k][j] * D[j];
@@ -186,7 +191,7 @@ void invertSymmetric(const double* K, int m, double tol, double* inverse) {
     }
   }
   // X = L^-1 (unit lower triangular), then K^+ = X^T D^+ X.
-  double X[kJointBlockRows][kJointBlockRows] = {};
+  double X[kJointBlockRows][kJointBlockRows];
   for (int c = 0; c < m; ++c) {
     X[c][c] = 1.0;
     for (int i = c + 1; i < m; ++i) {
