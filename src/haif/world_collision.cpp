@@ -1,0 +1,226 @@
+// The collision stage: broad phase (moved bodies' new pairs) and narrow phase (each pair's
+// manifold, impulses carried over to the matching points, anchors, what later stages read).
+#include "haif/world_internal.h"
+
+#include "collision/collide.h"
+
+namespace haif {
+
+namespace {
+
+// Moved bodies whose broad-phase queries one task runs: a query is a few microseconds.
+constexpr uint32_t kPairQueryGrain = 64;
+
+/// An old contact point this close (m) to a new one passes on its impulse when ids do not match.
+constexpr float kWarmStartMatchDistance = 0.02f;
+
+}  // namespace
+
+void World::updateBroadPhase() {
+  const uint32_t n = bodyCount();
+  const float dt = settings_.dt;
+  // Tight boxes (kept for buoyancy and metrics), then each swept by this step's motion so fast
+  // bodies find their pairs before they pass through them.
+  parallelFor(n, 1024, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t i = begin; i < end; ++i)
+      if (bodies_.kind[i] != BodyKind::Static && !bodies_.asleep[i]) bounds_[i] = computeAabb(shapes_[i], bodies_.xf[i]);
+  });
+  for (uint32_t i = 0; i < n; ++i) {
+    if (bodies_.kind[i] == BodyKind::Static || bodies_.asleep[i]) continue;
+    const Vec3 d = dt * bodies_.v[i];
+    broadPhase_.update(i, bounds_[i].merged({bounds_[i].lo + d, bounds_[i].hi + d}));
+  }
+  // New pairs: the moved bodies' queries run in parallel, a list per run of kPairQueryGrain of
+  // them (a churning pile re-inserts most of its bodies every step, and the queries were a sixth
+  // of a swept pit's step, serial); the lists are then joined in order, so the contacts are made
+  // in the same order whatever the threads.
+  auto wanted = [&](uint32_t a, uint32_t b) {
+    const bool dynA = bodies_.kind[a] == BodyKind::Dynamic, dynB = bodies_.kind[b] == BodyKind::Dynamic;
+    if (!dynA && !dynB) return false;  // static/kinematic pairs need no contact
+    const uint64_t key = PairMap::key(a, b);
+    if (jointPairs_.find(key) != PairMap::kNotFound) return false;  // jointed bodies do not collide
+    return pairs_.find(key) == PairMap::kNotFound;
+  };
+  const std::vector<uint32_t>& moved = broadPhase_.moved();
+  const uint32_t movedCount = uint32_t(moved.size());
+  const uint32_t runs = (movedCount + kPairQueryGrain - 1) / kPairQueryGrain;
+  if (newPairRuns_.size() < runs) newPairRuns_.resize(runs);
+  parallelFor(runs, 1, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t r = begin; r < end; ++r) {
+      std::vector<std::pair<uint32_t, uint32_t>>& found = newPairRuns_[r];
+      found.clear();
+      const uint32_t last = std::min(movedCount, (r + 1) * kPairQueryGrain);
+      for (uint32_t i = r * kPairQueryGrain; i < last; ++i)
+        broadPhase_.queryMoved(moved[i], [&](uint32_t a, uint32_t b) {
+          if (wanted(a, b)) found.emplace_back(a, b);
+        });
+    }
+  });
+  uint32_t created = 0;
+  for (uint32_t r = 0; r < runs; ++r) {
+    for (const auto& [a, b] : newPairRuns_[r]) {
+      Contact c;
+      c.a = std::min(a, b);
+      c.b = std::max(a, b);
+      c.friction = std::sqrt(bodies_.friction[a] * bodies_.friction[b]);
+      c.restitution = std::max(bodies_.restitution[a], bodies_.restitution[b]);
+      pairs_.set(PairMap::key(a, b), static_cast<uint32_t>(contacts_.size()));
+      contacts_.push_back(c);
+      ++created;
+    }
+  }
+  broadPhase_.clearMoved();
+  stats_.newPairs = created;
+}
+
+namespace {
+
+// What the stages after the narrow phase need of a contact, copied while it is in cache.
+inline void noteEdge(const Contact& c, ContactEdge& edge, bool againstImmovable) {
+  edge.count = uint32_t(c.manifold.count);
+  edge.pressedByImmovable = againstImmovable && c.manifold.deepest() > 0.0f;
+  bool unloaded = true;
+  for (int i = 0; i < c.manifold.count; ++i) unloaded &= c.normalImpulse[i] == 0.0f;
+  edge.unloaded = unloaded;
+}
+
+// Sets a touching contact's static friction anchor where its points are now, unless it holds one
+// that has drifted less than kAnchorSlip along the contact; a contact without points lets go.
+constexpr float kAnchorSlip = 0.02f;  // m: more is a slide, not a drift to pull back
+inline void updateAnchor(Contact& c, const Transform& xa, const Transform& xb) {
+  const int m = c.manifold.count;
+  if (m == 0) {
+    c.anchored = false;
+    return;
+  }
+  Vec3 centre = Vec3::Zero(), n = Vec3::Zero();
+  for (int i = 0; i < m; ++i) {
+    centre += c.manifold.points[i].position;
+    n += c.manifold.points[i].normal;
+  }
+  centre /= float(m);
+  if (c.anchored) {
+    const Vec3 drift = xb.apply(c.anchorB) - xa.apply(c.anchorA);
+    const float along = n.squaredNorm() > 0.0f ? drift.dot(n) / n.norm() : 0.0f;
+    if (drift.squaredNorm() - along * along <= kAnchorSlip * kAnchorSlip) return;
+  }
+  c.anchorA = xa.applyInverse(centre);
+  c.anchorB = xb.applyInverse(centre);
+  c.anchored = true;
+}
+
+bool rolls(const Shape& s) { return s.type == ShapeType::Sphere || s.type == ShapeType::Capsule; }
+
+}  // namespace
+
+void World::narrowPhase() {
+  const uint32_t n = static_cast<uint32_t>(contacts_.size());
+  wakeFlag_.resize(n);
+  reusedFlag_.assign(n, 0);
+  contactEdges_.resize(n);
+  auto active = [&](uint32_t i) {
+    return bodies_.kind[i] == BodyKind::Kinematic || (bodies_.kind[i] == BodyKind::Dynamic && !bodies_.asleep[i]);
+  };
+  ManifoldReuseLimits reuseLimits;
+  reuseLimits.margin = settings_.contactMargin;
+  const float restingClosing = reuseLimits.slide + settings_.gravity.norm() * settings_.dt * settings_.dt;
+  parallelFor(n, 64, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t ci = begin; ci < end; ++ci) {
+      Contact& c = contacts_[ci];
+      wakeFlag_[ci] = 0;
+      c.pinched = false;  // PinchDetector::mark sets it again
+      ContactEdge& edge = contactEdges_[ci];
+      edge.a = c.a;
+      edge.b = c.b;
+      if (!active(c.a) && !active(c.b)) {  // sleeping or static on both sides: keep the manifold
+        noteEdge(c, edge, false);
+        continue;
+      }
+      // One side solved, the other static or kinematic: what pinches are made of (haif/pinch.h).
+      const bool solvedA = bodies_.isAwakeDynamic(c.a), solvedB = bodies_.isAwakeDynamic(c.b);
+      const bool againstImmovable = solvedA != solvedB && !bodies_.isDynamic(solvedA ? c.b : c.a);
+      const Transform &xa = bodies_.xf[c.a], &xb = bodies_.xf[c.b];
+      // Speculative margin: as far as the pair closes in one step, uncapped, so a small fast body meets a
+      // thin wall the step before it would pass it (a 1 m cap let 5 cm bodies through above 60 m/s). It
+      // only widens pairs the swept broad-phase boxes already found, and resting pairs keep the base margin.
+      const float rel = (bodies_.v[c.b] - bodies_.v[c.a]).norm() * settings_.dt;
+      // A pair that barely moves against each other keeps its manifold (a landing one may need points
+      // it does not have yet, so it is made again). Gravity has just been added to the velocities, so
+      // a body resting on a static one closes by g dt² a step before the solver stops it.
+      // A sphere or capsule rolls: its contact stays under its centre while a point fixed in it turns
+      // away, and the turned normal pushed a ball rolling at 1 cm/s up to 14 cm/s in 5 s. Those
+      // pairs are cheap to collide and always made again (nor remembered).
+      const bool reusable = settings_.reuseManifolds && !rolls(shapes_[c.a]) && !rolls(shapes_[c.b]);
+      if (reusable && rel < restingClosing && refreshManifold(c.cache, xa, xb, reuseLimits, c.manifold)) {
+        reusedFlag_[ci] = 1;
+        updateAnchor(c, xa, xb);
+        noteEdge(c, edge, againstImmovable);
+        continue;  // same points and ids: the impulses stay where they are
+      }
+      const Manifold old = c.manifold;
+      // A pair stays while its fat boxes overlap, but two in three of a churning pile's pairs are
+      // farther apart than the margin: their tight boxes, widened by it, already say no point can be.
+      const float reach = settings_.contactMargin + rel;
+      if (bounds_[c.a].expanded(reach).overlaps(bounds_[c.b])) collide(shapes_[c.a], xa, shapes_[c.b], xb, reach, c.manifold);
+      else c.manifold.count = 0;
+      if (reusable) rememberManifold(c.manifold, xa, xb, c.cache);
+      // Carry accumulated normal impulses over to the points that touch the same features; when
+      // the feature ids changed (a reference face switched), fall back to the nearest old point.
+      // Friction lives at the manifold's centre and carries over as it is.
+      float normal[kMaxManifoldPoints];
+      for (int i = 0; i < c.manifold.count; ++i) {
+        const ContactPoint& np = c.manifold.points[i];
+        int match = -1;
+        float best = kWarmStartMatchDistance * kWarmStartMatchDistance;
+        for (int j = 0; j < old.count; ++j) {
+          if (old.points[j].id == np.id) {
+            match = j;
+            break;
+          }
+          const float d2 = (old.points[j].position - np.position).squaredNorm();
+          if (d2 < best) {
+            best = d2;
+            match = j;
+          }
+        }
+        normal[i] = match >= 0 ? c.normalImpulse[match] : 0.0f;
+      }
+      for (int i = 0; i < c.manifold.count; ++i) c.normalImpulse[i] = normal[i];
+      if (c.manifold.count == 0) {
+        c.frictionImpulse.setZero();
+        c.twistImpulse = 0.0f;
+      }
+      if ((old.count > 0) != (c.manifold.count > 0)) wakeFlag_[ci] = 1;
+      updateAnchor(c, xa, xb);
+      noteEdge(c, edge, againstImmovable);
+    }
+  });
+
+  for (const uint8_t reused : reusedFlag_) stats_.manifoldsReused += reused;
+  // Destroy contacts whose fat boxes separated; wake sleeping bodies whose contacts changed.
+  // It reads the flat edges, not the contacts (a pass over those took ~0.4 ms in many_pyramids).
+  for (uint32_t ci = 0; ci < contacts_.size();) {
+    const ContactEdge c = contactEdges_[ci];
+    if (wakeFlag_[ci]) {
+      wake(c.a);
+      wake(c.b);
+    }
+    if (c.count == 0 && !broadPhase_.fatOverlap(c.a, c.b)) {
+      pairs_.erase(PairMap::key(c.a, c.b));
+      const uint32_t last = static_cast<uint32_t>(contacts_.size() - 1);
+      if (ci != last) {
+        contacts_[ci] = contacts_[last];
+        wakeFlag_[ci] = wakeFlag_[last];
+        contactEdges_[ci] = contactEdges_[last];
+        pairs_.set(PairMap::key(contacts_[ci].a, contacts_[ci].b), ci);
+      }
+      contacts_.pop_back();
+      wakeFlag_.pop_back();
+      contactEdges_.pop_back();
+      continue;
+    }
+    ++ci;
+  }
+}
+
+}  // namespace haif

@@ -1,0 +1,112 @@
+// What the World's stage files share (not API): the clock, the task grains used by more than one
+// stage, and the member templates that run a stage's work over islands, strips and chunks.
+#pragma once
+
+#include "haif/world.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace haif {
+
+#ifdef HAIF_TSAN
+constexpr bool kTsan = true;
+#else
+constexpr bool kTsan = false;
+#endif
+
+namespace world_detail {
+
+using Clock = std::chrono::steady_clock;
+inline double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+/// Rows of an island whose total is below this are batched with their neighbours into one task,
+/// so thousands of tiny islands do not each pay a task's overhead.
+constexpr uint32_t kBatchRows = 1024;
+
+}  // namespace world_detail
+
+using world_detail::Clock;
+using world_detail::msSince;
+using world_detail::kBatchRows;
+
+template <class F>
+void World::parallelFor(uint32_t n, uint32_t grain, F&& f) {
+  if (!arena_ || n <= grain) {
+    if (n > 0) f(0u, n);
+    return;
+  }
+#ifdef HAIF_TSAN
+  pool_->run(n, grain, [&](uint32_t b, uint32_t e) { f(b, e); });
+#else
+  arena_->execute([&] {
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, grain),
+                      [&](const tbb::blocked_range<uint32_t>& r) { f(r.begin(), r.end()); });
+  });
+#endif
+}
+
+template <class First, class Second>
+void World::forEachIslandTimed(First&& first, Second&& second, bool firstIsSweeps) {
+  const uint32_t batches = static_cast<uint32_t>(batchStart_.size()) - 1;
+  parallelFor(batches, 1, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t b = begin; b < end; ++b) {
+      // A batch is ~kBatchRows rows: its constraints stay in cache from one phase to the next.
+      const auto t0 = Clock::now();
+      for (uint32_t k = batchStart_[b]; k < batchStart_[b + 1]; ++k) first(k);
+      const auto t1 = Clock::now();
+      for (uint32_t k = batchStart_[b]; k < batchStart_[b + 1]; ++k) second(k);
+      const auto t2 = Clock::now();
+      const double a = std::chrono::duration<double, std::milli>(t1 - t0).count();
+      const double c = std::chrono::duration<double, std::milli>(t2 - t1).count();
+      PhaseClock& pc = phaseClock();
+      pc.fixedMs += firstIsSweeps ? c : a;
+      pc.sweepMs += firstIsSweeps ? a : c;
+    }
+  });
+}
+
+// Runs f(begin, end) over island k's contact range and merges the SweepResults f returns. A split
+// island runs its strips in two parallel phases, even strips then odd ones, then its tail (see
+// island_split.h), and merges in strip order, so sums do not depend on the thread count. Any other
+// island is one range on the calling thread.
+template <class F>
+SweepResult World::forEachStrip(uint32_t k, F&& f) {
+  const int32_t li = layoutOf_[k];
+  if (li < 0) return f(0u, islands_.islands[k].contactCount);
+  const StripLayout& layout = layouts_[li];
+  SweepResult* res = stripResult_.data() + size_t(li) * (kMaxStrips + 1);
+  SweepResult total;
+  for (uint32_t phase = 0; phase < 2; ++phase) {
+    const uint32_t tasks = (layout.strips + 1 - phase) / 2;
+    parallelFor(tasks, 1, [&](uint32_t begin, uint32_t end) {
+      for (uint32_t t = begin; t < end; ++t) {
+        const uint32_t s = 2 * t + phase;
+        res[s] = f(layout.start[s], layout.start[s + 1]);
+      }
+    });
+    for (uint32_t t = 0; t < tasks; ++t) total.merge(res[2 * t + phase]);
+  }
+  const uint32_t tail = layout.strips;
+  total.merge(f(layout.start[tail], layout.start[tail + 1]));
+  return total;
+}
+
+template <class F>
+void World::forEachContactChunk(uint32_t k, uint32_t grain, F&& f) {
+  const uint32_t n = islands_.islands[k].contactCount;
+  if (layoutOf_[k] >= 0) parallelFor(n, grain, f);
+  else f(0u, n);
+}
+
+}  // namespace haif

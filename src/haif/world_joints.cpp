@@ -1,0 +1,130 @@
+// The joint stage: joints added and broken, their bodies woken and stiffened, their rows prepared
+// and their impulses kept per island.
+#include "haif/world_internal.h"
+
+namespace haif {
+
+uint32_t World::addJoint(const JointDef& def) {
+  auto valid = [&](uint32_t b) { return b == kWorldBody || b < bodyCount(); };
+  if (!valid(def.bodyA) || !valid(def.bodyB)) throw std::invalid_argument("addJoint: unknown body");
+  if (def.bodyA == def.bodyB) throw std::invalid_argument("addJoint: a joint needs two different bodies");
+  Joint j;
+  j.def = def;
+  joints_.push_back(j);
+  for (uint32_t b : {def.bodyA, def.bodyB})
+    if (b != kWorldBody) bodies_.implicitGyro[b] = 1;  // see integratePositions
+  if (!def.collideConnected && def.bodyA != kWorldBody && def.bodyB != kWorldBody) {
+    // Jointed bodies usually overlap at the joint: keep the pair out of the contact list.
+    const uint64_t key = PairMap::key(def.bodyA, def.bodyB);
+    const uint32_t n = jointPairs_.find(key);
+    jointPairs_.set(key, n == PairMap::kNotFound ? 1u : n + 1u);
+    const uint32_t ci = pairs_.find(key);
+    if (ci != PairMap::kNotFound) {  // a contact made before the joint: remove it as the narrow phase does
+      pairs_.erase(key);
+      if (ci + 1 != contacts_.size()) {
+        contacts_[ci] = contacts_.back();
+        pairs_.set(PairMap::key(contacts_[ci].a, contacts_[ci].b), ci);
+      }
+      contacts_.pop_back();
+    }
+  }
+  return static_cast<uint32_t>(joints_.size() - 1);
+}
+
+JointError World::jointError(uint32_t id) const {
+  return joints_[id].broken ? JointError{} : measureJointError(bodies_, joints_[id]);
+}
+
+// A joint carries its bodies' motion across: a sleeping body joined to an awake one wakes up.
+void World::wakeJointedBodies() {
+  auto awake = [&](uint32_t i) {
+    return i != kWorldBody && bodies_.kind[i] == BodyKind::Dynamic && !bodies_.asleep[i];
+  };
+  auto sleeping = [&](uint32_t i) { return i != kWorldBody && bodies_.asleep[i]; };
+  for (const Joint& j : joints_) {
+    if (j.broken) continue;
+    if (awake(j.def.bodyA) && sleeping(j.def.bodyB)) wake(j.def.bodyB);
+    else if (awake(j.def.bodyB) && sleeping(j.def.bodyA)) wake(j.def.bodyA);
+  }
+}
+
+// After the solve: joints whose force or torque went over their threshold break (in index order, so
+// the outcome does not depend on threads). Their bodies collide again from the next step.
+void World::breakJoints() {
+  for (Joint& j : joints_) {
+    const JointDef& d = j.def;
+    if (j.broken || (j.lastForce.norm() <= d.breakForce && j.lastTorque.norm() <= d.breakTorque)) continue;
+    j.broken = true;
+    j.lastForce.setZero();
+    j.lastTorque.setZero();
+    if (d.collideConnected || d.bodyA == kWorldBody || d.bodyB == kWorldBody) continue;
+    const uint64_t key = PairMap::key(d.bodyA, d.bodyB);
+    const uint32_t n = jointPairs_.find(key);
+    if (n > 1) {
+      jointPairs_.set(key, n - 1);
+      continue;
+    }
+    jointPairs_.erase(key);
+    // The broad phase reports only new overlaps: a pair that already overlaps gets its contact here.
+    if (pairs_.find(key) == PairMap::kNotFound && broadPhase_.fatOverlap(d.bodyA, d.bodyB)) {
+      Contact c;
+      c.a = std::min(d.bodyA, d.bodyB);
+      c.b = std::max(d.bodyA, d.bodyB);
+      c.friction = std::sqrt(bodies_.friction[c.a] * bodies_.friction[c.b]);
+      c.restitution = std::max(bodies_.restitution[c.a], bodies_.restitution[c.b]);
+      pairs_.set(key, static_cast<uint32_t>(contacts_.size()));
+      contacts_.push_back(c);
+    }
+  }
+}
+
+// Geometric stiffness of loaded joints, added to their bodies' inertia for this step's solve (contacts
+// and joints alike); integration puts the true inertia back.
+void World::stiffenJointedBodies() {
+  if (!settings_.joints.geometricStiffness) return;
+  jointStiffness_.assign(bodyCount(), 0.0f);
+  for (uint32_t ji : islands_.joints) accumulateJointStiffness(bodies_, joints_[ji], jointStiffness_.data());
+  for (uint32_t i : islands_.bodies) stiffenInertia(bodies_, i, jointStiffness_[i], settings_.dt);
+}
+
+// Rows of island k's joints, warm started, and its joint tree factorised (when joints are solved as a tree).
+void World::prepareJoints(uint32_t k, const SolverParams& sp) {
+  const Island& isl = islands_.islands[k];
+  JointConstraint* js = jointConstraints_.data() + isl.firstJoint;
+  const uint32_t nj = isl.jointCount;
+  const uint32_t* ids = islands_.joints.data() + isl.firstJoint;
+  const float time = float(stepCount_ + 1) * sp.dt;
+  for (uint32_t j = 0; j < nj; ++j) prepareJoint(bodies_, joints_[ids[j]], ids[j], sp, settings_.joints, time, js[j]);
+  if (sp.warmStart) warmStartJoints(bodies_, js, nj);
+  if (settings_.joints.treeSolve) jointTrees_[k].build(js, nj);
+}
+
+// After the relax sweeps: keep the impulses for the next step, then (the rows being free now) project the
+// tree joints back onto their constraints at the integrated positions.
+void World::finishJoints(uint32_t k) {
+  const Island& isl = islands_.islands[k];
+  JointConstraint* js = jointConstraints_.data() + isl.firstJoint;
+  const uint32_t nj = isl.jointCount;
+  storeJointImpulses(js, nj, settings_.dt, joints_.data());
+  if (!settings_.joints.treeSolve || !settings_.joints.postProjection) return;
+  // The projection moves bodies in the same metric as the solve: light loaded links mostly translate.
+  const bool stiff = settings_.joints.geometricStiffness;
+  const uint32_t* bodies = islands_.bodies.data() + isl.firstBody;
+  if (stiff)
+    for (uint32_t j = 0; j < isl.bodyCount; ++j)
+      stiffenInertia(bodies_, bodies[j], jointStiffness_[bodies[j]], settings_.dt);
+  projectJointPositions(bodies_, joints_.data(), islands_.joints.data() + isl.firstJoint, nj, solverParams(),
+                        settings_.joints, js, jointTrees_[k]);
+  if (stiff)
+    for (uint32_t j = 0; j < isl.bodyCount; ++j) bodies_.updateWorldInertia(bodies[j]);
+}
+
+void World::measureJointErrors() {
+  for (uint32_t i = 0; i < jointCount(); ++i) {
+    const JointError e = jointError(i);
+    stats_.jointErrorM = std::max(stats_.jointErrorM, e.linear);
+    stats_.jointErrorRad = std::max(stats_.jointErrorRad, e.angular);
+  }
+}
+
+}  // namespace haif
