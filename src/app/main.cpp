@@ -9,8 +9,7 @@
 
 namespace {
 
-void usage(FILE* out) {
-  std::fputs(
+const char* const kUsage =
       "usage: haif <command> [options]\n"
       "\n"
       "commands:\n"
@@ -41,8 +40,33 @@ void usage(FILE* out) {
       "                  exit 0 all pass, 1 some fail, 2 bad input [SCENE|DIR ...] [--quick] [--out DIR]\n"
       "                  [--threads T]\n"
       "  assets          write the generated mesh assets (OBJ, STL, PLY, glTF, GLB) [--out DIR]\n"
-      "  help            this text\n",
-      out);
+      "  help [COMMAND]  this text, or one command's part of it (also: haif COMMAND --help)\n";
+
+void usage(FILE* out) { std::fputs(kUsage, out); }
+
+// One command's lines of the usage text: its own line (two spaces, then its name) and the lines
+// indented under it. False when there is no such command.
+bool commandUsage(const char* name, FILE* out) {
+  const std::string text(kUsage), head = std::string("  ") + name;
+  size_t at = 0;
+  while ((at = text.find('\n' + head, at)) != std::string::npos) {
+    const size_t start = at + 1, after = start + head.size();
+    if (after < text.size() && (text[after] == ' ' || text[after] == '\n')) {
+      size_t end = text.find('\n', start);
+      // Continuation lines are indented deeper than a command's name.
+      while (end != std::string::npos && text.compare(end + 1, 4, "    ") == 0) end = text.find('\n', end + 1);
+      std::fprintf(out, "%s\n", text.substr(start, end - start).c_str());
+      return true;
+    }
+    at = after;
+  }
+  return false;
+}
+
+bool asksForHelp(int argc, char** argv) {
+  for (int i = 2; i < argc; ++i)
+    if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-h")) return true;
+  return false;
 }
 
 }  // namespace
@@ -54,6 +78,11 @@ int main(int argc, char** argv) {
   }
   const char* cmd = argv[1];
   if (!std::strcmp(cmd, "help") || !std::strcmp(cmd, "--help") || !std::strcmp(cmd, "-h")) {
+    if (argc > 2 && std::strcmp(cmd, "help") == 0) {
+      if (commandUsage(argv[2], stdout)) return 0;
+      std::fprintf(stderr, "haif help: unknown command '%s' (see 'haif help')\n", argv[2]);
+      return 2;
+    }
     usage(stdout);
     return 0;
   }
@@ -64,6 +93,7 @@ int main(int argc, char** argv) {
       {"stress", haif::commandStress},   {"assets", haif::commandAssets}};
   for (const auto& [name, command] : commands) {
     if (std::strcmp(cmd, name) != 0) continue;
+    if (asksForHelp(argc, argv)) return commandUsage(name, stdout) ? 0 : 2;
     // Before any thread starts: every thread inherits the blocked SIGINT and SIGTERM.
     haif::installInterruptHandler(std::string("haif ") + name);
     const int status = command(argc, argv);
