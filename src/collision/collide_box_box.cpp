@@ -2,6 +2,7 @@
 // frame (3 face axes of each box, 9 edge cross products), then either face clipping (reference face
 // of one box against the incident face of the other) or a single edge-edge point.
 // Everything lives on the stack; both rotation matrices are computed once.
+#include "collision/axis_preference.h"
 #include "collision/collide_pairs.h"
 #include "collision/contact_buffer.h"
 
@@ -9,12 +10,6 @@ namespace haif {
 namespace detail {
 
 namespace {
-
-// Face axes win over edge axes unless an edge axis separates clearly more: a resting contact whose
-// best axis flips between a face and an edge from one step to the next would make the manifold flicker.
-constexpr float kFaceBTol = 5e-4f;  ///< B's face must beat A's by this to become the reference
-constexpr float kEdgeAbsTol = 1e-3f;
-constexpr float kEdgeRelTol = 0.02f;
 
 struct ClipVert {
   Vec3 p;
@@ -99,7 +94,7 @@ int collideBoxBox(const Shape& a, const Transform& xa, const Shape& b, const Tra
 
   const bool refIsB = sepB > sepA + kFaceBTol;
   const float faceSep = refIsB ? sepB : sepA;
-  if (edgeI >= 0 && sepE > faceSep + kEdgeAbsTol + kEdgeRelTol * std::fabs(faceSep)) {
+  if (edgeI >= 0 && edgeBeatsFace(sepE, faceSep, margin)) {
     // Edge-edge: one point between the closest points of the two supporting edges.
     Vec3 L = Vec3::Unit(edgeI).cross(R.col(edgeJ)).normalized();
     if (L.dot(t) < 0.0f) L = -L;

@@ -1,6 +1,7 @@
 // Polyhedron against polyhedron (box-hull, hull-hull, triangle-convex). SAT over the face normals of
 // both and the cross products of all edge pairs, then clipping of the incident face against the side
 // planes of the reference face, or one point between two edges. Computed in A's frame.
+#include "collision/axis_preference.h"
 #include "collision/clip_polygon.h"
 #include "collision/geometry.h"
 #include "collision/polytope.h"
@@ -14,9 +15,6 @@ namespace detail {
 
 namespace {
 
-// Same preference as box-box: faces beat edges, A's faces beat B's, unless clearly worse.
-constexpr float kFaceBTol = 5e-4f;
-constexpr float kEdgeAbsTol = 1e-3f;
 // Edges of the second polyhedron kept turned into the first one's frame for the pruned edge test
 // (on the stack: collide never allocates); a hull with more takes the unpruned test.
 constexpr int kMaxGaussEdges = 256;
@@ -41,13 +39,6 @@ inline bool anyLane(GaussI m) {
   for (const uint64_t x : w) any |= x;
   return any != 0;
 }
-constexpr float kEdgeRelTol = 0.02f;
-// A share of the margin an edge contact must also win by: a pair closing fast (a hull falling at
-// 14 m/s onto one at rest, margin 0.26 m) that meets face to face with a slight tilt first comes
-// near at an edge, and one point there took the whole landing (both spun up to 30 rad/s and sank
-// 0.22 m into each other); the face's clipped points take it on several. Their gaps, read along the
-// face normal, are never larger than the true ones. At rest (margin 2 cm) it is 2 mm.
-constexpr float kEdgeMarginShare = 0.1f;
 // How much farther apart than their separation and the margin two edges may be and still make the
 // contact (m).
 constexpr float kEdgeGapTol = 1e-3f;
@@ -212,7 +203,7 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
     const uint32_t id = 0x40000000u | ((uint32_t(edgeA) & 0x7FFFu) << 15) | (uint32_t(edgeB) & 0x7FFFu);
     return writeSingle(m, xa.apply(0.5f * (qa + qb)), Ra * edgeAxis, -sep, id);
   };
-  if (edgeA >= 0 && sepE > faceSep + kEdgeAbsTol + kEdgeRelTol * std::fabs(faceSep) + kEdgeMarginShare * margin) {
+  if (edgeA >= 0 && edgeBeatsFace(sepE, faceSep, margin)) {
     const int count = edgeContact(sepE);
     if (count >= 0) return count;
   }
