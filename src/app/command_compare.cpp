@@ -38,7 +38,7 @@ int commandCompare(int argc, char** argv) {
 #else
   CommandLine cl(
       "compare",
-      {"--left", "--right", "--frames", "--frame-every", "--out", "--width", "--height", "--threads", "--view"},
+      {"--left", "--right", "--frames", "--frame-every", "--out", "--width", "--height", "--threads", "--view", "--gl"},
       {"--no-overlay"});
   std::string error;
   if (!cl.parse(argc, argv, 2, error)) return fail(error, 2);
@@ -53,6 +53,7 @@ int commandCompare(int argc, char** argv) {
       !cl.getInt("--width", 128, 8192, opt.width, error) || !cl.getInt("--height", 200, 8192, opt.height, error) ||
       !cl.getInt("--threads", 1, 1024, opt.threads, error))
     return fail(error, 2);
+  if (!applyGlOption(cl.get("--gl", "auto"), error)) return fail(error, 2);
   if (!parseViewMode(cl.get("--view", "normal"), opt.view))
     return fail("--view: expected normal, island, sleep or heat, got '" + cl.get("--view") + "'", 2);
   opt.overlay = !cl.has("--no-overlay");

@@ -83,7 +83,7 @@ int commandReel(int argc, char** argv) {
   (void)argc, (void)argv;
   return fail("this build has no renderer (configure with -DHAIF_BUILD_RENDER=ON)", 2);
 #else
-  CommandLine cl("reel", {"--out", "--width", "--height", "--fps", "--threads"}, {"--check"});
+  CommandLine cl("reel", {"--out", "--width", "--height", "--fps", "--threads", "--gl"}, {"--check"});
   std::string error;
   if (!cl.parse(argc, argv, 2, error)) return fail(error, 2);
   if (cl.positional().size() != 1) return fail("expected exactly one PLAYLIST.json (see 'haif help')", 2);
@@ -93,6 +93,7 @@ int commandReel(int argc, char** argv) {
   if (!cl.getInt("--width", 128, 8192, width, error) || !cl.getInt("--height", 200, 8192, height, error) ||
       !cl.getDouble("--fps", 1.0, 240.0, fps, error) || !cl.getInt("--threads", 1, 1024, threads, error))
     return fail(error, 2);
+  if (!applyGlOption(cl.get("--gl", "auto"), error)) return fail(error, 2);
   const std::string out =
       cl.get("--out", "output/" + std::filesystem::path(playlistPath).stem().string() + ".mp4");
   if (std::filesystem::path(out).extension() != ".mp4")

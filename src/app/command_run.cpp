@@ -42,7 +42,7 @@ int commandRun(int argc, char** argv) {
   CommandLine cl("run",
                  {"--frames", "--out", "--threads", "--mode", "--iterations", "--budget-ms", "--width", "--height",
                   "--replay", "--calibration", "--i-min", "--view", "--overlay-corner", "--frame-every",
-                  "--error-every", "--video"},
+                  "--error-every", "--video", "--gl"},
                  {"--no-render", "--contacts", "--no-overlay", "--render-phases"});
   std::string error;
   if (!cl.parse(argc, argv, 2, error)) return fail(error, 2);
@@ -81,6 +81,9 @@ int commandRun(int argc, char** argv) {
   const std::string video = cl.get("--video");
   if (!video.empty() && !render) return fail("haif run: --video needs rendering (drop --no-render)", 2);
   // Every option is checked before anything is created.
+#ifdef HAIF_HAVE_RENDER
+  if (!applyGlOption(cl.get("--gl", "auto"), error)) return fail("haif run: " + error, 2);
+#endif
   const std::string view = cl.get("--view", "normal");
   if (view != "normal" && view != "island" && view != "sleep" && view != "heat")
     return fail("haif run: --view: expected normal, island, sleep or heat, got '" + view + "'", 2);

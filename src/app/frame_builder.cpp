@@ -4,6 +4,16 @@
 
 namespace haif {
 
+bool applyGlOption(const std::string& text, std::string& error) {
+  render::GlBackend backend;
+  if (!render::parseGlBackend(text, backend)) {
+    error = "--gl: expected osmesa, egl or auto, got '" + text + "'";
+    return false;
+  }
+  render::setPreferredGlBackend(backend);
+  return true;
+}
+
 bool parseViewMode(const std::string& text, render::ViewMode& out) {
   if (text == "normal") out = render::ViewMode::Normal;
   else if (text == "island") out = render::ViewMode::Island;

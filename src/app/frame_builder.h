@@ -13,6 +13,9 @@ namespace haif {
 
 /// Parses a --view value (normal, island, sleep, heat); false for anything else.
 bool parseViewMode(const std::string& text, render::ViewMode& out);
+/// Applies a --gl value (osmesa, egl, auto) to every renderer the command creates; false with
+/// `error` for anything else.
+bool applyGlOption(const std::string& text, std::string& error);
 
 class FrameBuilder {
  public:

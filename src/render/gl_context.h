@@ -1,6 +1,7 @@
 // An OpenGL context the renderer draws into. The renderer only ever renders into its own
 // framebuffer objects, so a backend just has to make a core-profile context current and hand out
-// function pointers. OSMesa is the one backend today; an EGL-surfaceless one can be added beside it.
+// function pointers. Two back ends: OSMesa (osmesa_context.cpp) and EGL surfaceless
+// (egl_context.cpp); `--gl osmesa|egl|auto` picks one.
 #pragma once
 
 #include <memory>
@@ -24,7 +25,18 @@ class GlContext {
 };
 
 /// Creates an OSMesa (llvmpipe) core-profile context of at least GL 3.3 and makes it current.
-/// Returns nullptr and fills *error when OSMesa cannot give one.
+/// Returns nullptr and fills *error when OSMesa cannot give one (or the build has no OSMesa).
 std::unique_ptr<GlContext> createOsMesaContext(std::string* error);
+/// The same through EGL's surfaceless platform (no window system, no config).
+std::unique_ptr<GlContext> createEglContext(std::string* error);
+
+enum class GlBackend { Auto, OsMesa, Egl };
+/// "auto", "osmesa" or "egl"; false for anything else.
+bool parseGlBackend(const std::string& text, GlBackend& out);
+/// Auto: OSMesa when it gives a context, else EGL (Mesa 25.1 and later ship no OSMesa).
+std::unique_ptr<GlContext> createGlContext(GlBackend backend, std::string* error);
+/// The back end a RendererOptions starts with: Auto unless a command's --gl set another.
+GlBackend preferredGlBackend();
+void setPreferredGlBackend(GlBackend backend);
 
 }  // namespace haif::render

@@ -260,7 +260,7 @@ struct Renderer::Impl {
       if (error) *error = "renderer: invalid image size " + std::to_string(opt.width) + "x" + std::to_string(opt.height);
       return false;
     }
-    ctx = createOsMesaContext(error);
+    ctx = createGlContext(opt.gl, error);
     if (!ctx || !gl.load(*ctx, error)) return false;
     for (int surface : {kSurfaceBody, kSurfaceGround, kSurfaceBox, kSurfaceGroundUnshadowed, kSurfaceBoxAway}) {
       const std::string defines = surface == kSurfaceGroundUnshadowed ? "#define SURFACE 1\n#define RECEIVES_SHADOW 0\n"

@@ -3,6 +3,8 @@
 // per thread (each has its own context, made current by create()/render()).
 #pragma once
 
+#include "render/gl_context.h"
+
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -33,6 +35,7 @@ struct RendererOptions {
   bool cullHiddenBoxFaces = true;  ///< skip box faces lying inside another box (HiddenBoxFaces); same picture
   bool cullOccludedBoxes = true;   ///< skip boxes and box faces nearer boxes hide (BoxOcclusion); same picture
   bool timePhases = false;  ///< measure each phase of render() (adds a glFinish per phase: for profiling only)
+  GlBackend gl = preferredGlBackend();  ///< OSMesa, EGL or auto (gl_context.h)
 };
 
 /// Wall time of each phase of the last render() in ms; all zero unless RendererOptions::timePhases.
