@@ -5,6 +5,9 @@
 // "sub" filter nearly all of their redundancy is a repeat of the pixel to the left or of the row
 // above: this coder looks for matches at just those two distances, with Huffman codes fitted to each
 // block (RFC 1951 dynamic blocks). Output is a standard stream any PNG reader decodes.
+// Against Debian's libdeflate 1.14 on the same sub-filtered scanlines of 30 demo frames (1280x720,
+// session 18): this coder 6.4 ms a frame, 512 KB; libdeflate level 1 12.2 ms (1.2 ms of it the
+// filter), 411 KB; level 6 25.9 ms, 378 KB. Frames are intermediate files, so speed decides.
 #pragma once
 
 #include <cstdint>
