@@ -9,6 +9,22 @@ namespace {
 std::atomic<GlBackend> preferred{GlBackend::Auto};
 }  // namespace
 
+bool glBackendBuilt(GlBackend backend) {
+  switch (backend) {
+#ifdef HAIF_HAVE_OSMESA
+    case GlBackend::OsMesa: return true;
+#else
+    case GlBackend::OsMesa: return false;
+#endif
+#ifdef HAIF_HAVE_EGL
+    case GlBackend::Egl: return true;
+#else
+    case GlBackend::Egl: return false;
+#endif
+    default: return true;
+  }
+}
+
 bool parseGlBackend(const std::string& text, GlBackend& out) {
   if (text == "auto") out = GlBackend::Auto;
   else if (text == "osmesa") out = GlBackend::OsMesa;

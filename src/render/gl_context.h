@@ -31,6 +31,8 @@ std::unique_ptr<GlContext> createOsMesaContext(std::string* error);
 std::unique_ptr<GlContext> createEglContext(std::string* error);
 
 enum class GlBackend { Auto, OsMesa, Egl };
+/// Whether this build has the back end (its package was found at configure time). Auto: always.
+bool glBackendBuilt(GlBackend backend);
 /// "auto", "osmesa" or "egl"; false for anything else.
 bool parseGlBackend(const std::string& text, GlBackend& out);
 /// Auto: OSMesa when it gives a context, else EGL (Mesa 25.1 and later ship no OSMesa).

@@ -17,6 +17,8 @@ TEST(GlBackendCommand, OsMesaAndEglFramesPassHaifDiff) {
     const ProcessResult r = runHaif("run '" + scene + "' --frames 4 --threads 1 --width 320 --height 240 --error-every 0 --gl " +
                                         gl + " --out '" + (dir / gl).string() + "'",
                                     dir);
+    if (r.exitCode != 0 && r.err.find("this build has no") != std::string::npos)
+      GTEST_SKIP() << "this build has only one GL back end: " << r.err;
     ASSERT_EQ(r.exitCode, 0) << gl << ": " << r.err;
     ASSERT_TRUE(std::filesystem::exists(dir / gl / "frames" / "frame_00003.png")) << gl;
   }
