@@ -29,4 +29,13 @@ struct Contact {
   bool touching() const { return manifold.count > 0; }
 };
 
+/// Contacts a loop over scattered contacts fetches ahead of the one it works on.
+constexpr uint32_t kPrefetchAhead = 6;
+
+/// Asks for every cache line of a contact (a hint only: nothing changes if it is ignored).
+inline void prefetchContact(const Contact& c) {
+  const char* p = reinterpret_cast<const char*>(&c);
+  for (size_t at = 0; at < sizeof(Contact); at += 64) __builtin_prefetch(p + at);
+}
+
 }  // namespace haif

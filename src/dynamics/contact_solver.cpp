@@ -724,6 +724,7 @@ void accelerate(BodyStore& bodies, ContactConstraint* cs, size_t n, float beta) 
 void storeImpulses(const ContactConstraint* cs, size_t n, Contact* contacts) {
   for (size_t k = 0; k < n; ++k) {
     const ContactConstraint& c = cs[k];
+    if (k + kPrefetchAhead < n) prefetchContact(contacts[cs[k + kPrefetchAhead].contact]);  // scattered
     Contact& ct = contacts[c.contact];
     // A pinch's impulses are the conflict's, not a load: none is carried into the next step.
     if (ct.pinched) {

@@ -90,7 +90,12 @@ void World::solveIslands(int iterations) {
     ContactConstraint* cs = constraints_.data() + isl.firstContact;
     const uint32_t* ids = islands_.contacts.data() + isl.firstContact;
     forEachContactChunk(k, 256, [&](uint32_t begin, uint32_t end) {
-      for (uint32_t j = begin; j < end; ++j) prepareContact(bodies_, contacts_[ids[j]], ids[j], sp, cs[j]);
+      for (uint32_t j = begin; j < end; ++j) {
+        // Contacts are visited in solve order, scattered through memory: the one a few ahead is
+        // fetched while this one is prepared (the waits were a fifth of prepare in many_pyramids).
+        if (j + kPrefetchAhead < end) prefetchContact(contacts_[ids[j + kPrefetchAhead]]);
+        prepareContact(bodies_, contacts_[ids[j]], ids[j], sp, cs[j]);
+      }
     });
     isChain_[k] = settings_.chainSolve && layoutOf_[k] < 0 && isl.jointCount == 0 &&
                   prepareChain(contacts_.data(), cs, isl.contactCount, chainMark_.data(),
