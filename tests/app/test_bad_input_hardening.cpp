@@ -22,17 +22,15 @@ using test::runHaif;
 const char* kStack = R"({"name": "hardening_stack", "camera": {"eye": [9, 6, 9], "target": [0, 2, 0]},
   "generators": [{"type": "ground"}, {"type": "stack", "count": 4}]})";
 
-class BadInputHardening : public ::testing::Test {
+class BadInputHardening : public test::ScratchFolderTest {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = test::scratchDir("haif_hardening_" + std::string(info->name()));
+    ScratchFolderTest::SetUp();
     std::ofstream(dir_ / "stack.json") << kStack;
     // A deep array inside a comment: no code reads it, the scanner of value positions did.
     std::ofstream(dir_ / "deep.json") << "{\"_comment\": " << std::string(20000, '[') << std::string(20000, ']')
                                       << ", \"generators\": [{\"type\": \"ground\"}]}";
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 
@@ -54,8 +52,6 @@ class BadInputHardening : public ::testing::Test {
     }
     return out;
   }
-
-  fs::path dir_;
 };
 
 TEST_F(BadInputHardening, DeepNestingIsOneErrorInEveryCommandThatReadsAScene) {

@@ -1,6 +1,8 @@
 // haif bench through the binary: a tiny sweep writes results.csv with every column and sane values
 // (one row per scene, engine and set-up), report.md with the seed's table, and the Pareto plot;
 // bad options and missing scenes fail with one clear line and no output. Needs the haif target built.
+#include "haif_process.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -44,16 +46,12 @@ constexpr bool kBullet = true;
 constexpr bool kBullet = false;
 #endif
 
-class BenchCommand : public ::testing::Test {
+class BenchCommand : public haif::test::ScratchFolderTest {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("haif_bench_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    ScratchFolderTest::SetUp();
     ASSERT_TRUE(fs::exists(HAIF_BINARY)) << "build the haif target first: " << HAIF_BINARY;
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   Result haif(const std::string& args) {
     const std::string cmd = std::string("'") + HAIF_BINARY + "' " + args + " >" + (dir_ / "stdout.txt").string() +
@@ -75,8 +73,6 @@ class BenchCommand : public ::testing::Test {
     EXPECT_FALSE(fs::exists(out / "results.csv")) << "partial output written";
     EXPECT_FALSE(fs::exists(out / "report.md")) << "partial output written";
   }
-
-  fs::path dir_;
 };
 
 const std::string kStacks = std::string(HAIF_SOURCE_DIR) + "/scenes/stacks_100.json";

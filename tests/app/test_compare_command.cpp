@@ -22,15 +22,13 @@ using test::runHaif;
 const char* kScene = R"({"name": "compare_stack", "camera": {"eye": [9, 6, 9], "target": [0, 2.5, 0]},
   "generators": [{"type": "ground"}, {"type": "stack", "count": 6}]})";
 
-class CompareCommand : public ::testing::Test {
+class CompareCommand : public test::ScratchFolderTest {
  protected:
   void SetUp() override {
-    dir_ = test::scratchDir("haif_compare_" +
-                            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    ScratchFolderTest::SetUp();
     scene_ = (dir_ / "scene.json").string();
     std::ofstream(scene_) << kScene;
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   test::ProcessResult compare(const std::string& args, const std::string& env = "") {
     return runHaif("compare '" + scene_ + "' " + args, dir_, env);
@@ -42,7 +40,6 @@ class CompareCommand : public ::testing::Test {
     for (const std::string& n : needles) EXPECT_NE(r.err.find(n), std::string::npos) << "no '" << n << "' in " << r.err;
   }
 
-  fs::path dir_;
   std::string scene_;
 };
 

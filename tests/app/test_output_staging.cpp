@@ -30,15 +30,13 @@ using test::runHaif;
 const char* kStack = R"({"name": "staging_stack", "camera": {"eye": [9, 6, 9], "target": [0, 2, 0]},
   "generators": [{"type": "ground"}, {"type": "stack", "count": 4}]})";
 
-class OutputStaging : public ::testing::Test {
+class OutputStaging : public test::ScratchFolderTest {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = test::scratchDir("haif_staging_" + std::string(info->name()));
+    ScratchFolderTest::SetUp();
     scene_ = (dir_ / "stack.json").string();
     std::ofstream(scene_) << kStack;
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   test::ProcessResult run(const std::string& out, const std::string& options, const std::string& env = "") {
     return runHaif("run '" + scene_ + "' --width 64 --height 48 --error-every 0 --out '" + (dir_ / out).string() + "' " +
@@ -68,7 +66,6 @@ class OutputStaging : public ::testing::Test {
     return nlohmann::json::parse(test::readWholeFile(run / "summary.json"))["steps"].get<int>();
   }
 
-  fs::path dir_;
   std::string scene_;
 };
 

@@ -20,22 +20,18 @@ using test::runHaif;
 const char* kScene = R"({"name": "reel_stack", "camera": {"eye": [9, 6, 9], "target": [0, 2.5, 0]},
   "generators": [{"type": "ground"}, {"type": "stack", "count": 4}]})";
 
-class ReelCommand : public ::testing::Test {
+class ReelCommand : public test::ScratchFolderTest {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = test::scratchDir("haif_reel_" + std::string(info->name()));
+    ScratchFolderTest::SetUp();
     std::ofstream(dir_ / "stack.json") << kScene;
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   std::string playlist(const std::string& text) {
     const fs::path p = dir_ / "reel.json";
     std::ofstream(p) << text;
     return p.string();
   }
-
-  fs::path dir_;
 };
 
 // 10 fps, 0.2 s fades = 2 frames, capped at half of either neighbour:

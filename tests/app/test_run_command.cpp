@@ -2,6 +2,8 @@
 // And one good run whose summary.json / stats.csv follow docs/metrics.md. Needs the haif target built.
 #include <nlohmann/json.hpp>
 
+#include "haif_process.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -30,16 +32,12 @@ std::string summaryHash(const fs::path& dir) {
   return nlohmann::json::parse(in).value("state_hash", std::string());
 }
 
-class RunCommand : public ::testing::Test {
+class RunCommand : public haif::test::ScratchFolderTest {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("haif_app_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    ScratchFolderTest::SetUp();
     ASSERT_TRUE(fs::exists(HAIF_BINARY)) << "build the haif target first: " << HAIF_BINARY;
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   // Runs `haif ARGS`, capturing stderr.
   Result haif(const std::string& args) {
@@ -81,8 +79,6 @@ class RunCommand : public ::testing::Test {
     const int line = 1 + int(std::count(text.begin(), text.begin() + std::min(pos, text.size()), '\n'));
     return file + ":" + std::to_string(line) + ":";
   }
-
-  fs::path dir_;
 };
 
 const std::string kStacks = std::string(HAIF_SOURCE_DIR) + "/scenes/stacks_100.json";

@@ -20,15 +20,13 @@ using test::runHaif;
 const char* kSmallScene = R"({"name": "video_stack", "camera": {"eye": [9, 6, 9], "target": [0, 2, 0]},
   "generators": [{"type": "ground"}, {"type": "stack", "count": 5}]})";
 
-class VideoOutput : public ::testing::Test {
+class VideoOutput : public test::ScratchFolderTest {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = test::scratchDir("haif_video_" + std::string(info->name()));
+    ScratchFolderTest::SetUp();
     scene_ = (dir_ / "scene.json").string();
     std::ofstream(scene_) << kSmallScene;
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   int countFiles(const fs::path& d, const std::string& ext) {
     if (!fs::exists(d)) return 0;
@@ -36,7 +34,6 @@ class VideoOutput : public ::testing::Test {
                              [&](const fs::directory_entry& e) { return e.path().extension() == ext; }));
   }
 
-  fs::path dir_;
   std::string scene_;
 };
 
