@@ -28,14 +28,14 @@ uint32_t JointTree::find(uint32_t x) {
 }
 
 bool JointTree::sameStructure(const JointConstraint* js, uint32_t n) {
-  bool same = built_ && n == shape_.size();
+  // Before the first build there is no structure: nothing to keep for n = 0 either.
+  bool same = n == shape_.size();
   shape_.resize(n);
   for (uint32_t c = 0; c < n; ++c) {
     const JointShape now{js[c].a, js[c].b, uint8_t(js[c].dynA), uint8_t(js[c].dynB), int32_t(js[c].blockRows)};
     same = same && shape_[c] == now;
     shape_[c] = now;
   }
-  built_ = true;
   return same;
 }
 
@@ -46,14 +46,11 @@ void JointTree::build(JointConstraint* js, uint32_t n) {
   // step, the same loops that drop its tree.
   if (sameStructure(js, n)) {
     for (uint32_t c = 0; c < n; ++c) js[c].inTree = inTree_[c] != 0;
-    if (order_.empty()) return;
-    assemble(js);
-    factor();
-    return;
+  } else {
+    buildStructure(js, n);
+    inTree_.resize(n);
+    for (uint32_t c = 0; c < n; ++c) inTree_[c] = js[c].inTree ? 1 : 0;
   }
-  buildStructure(js, n);
-  inTree_.resize(n);
-  for (uint32_t c = 0; c < n; ++c) inTree_[c] = js[c].inTree ? 1 : 0;
   if (order_.empty()) return;
   assemble(js);
   factor();

@@ -84,7 +84,6 @@ class JointTree {
   void solveInPlace();  // rhs_ <- A^-1 rhs_ with the factors
 
   uint32_t loops_ = 0;
-  bool built_ = false;
   std::vector<JointShape> shape_;   // per joint of the last build
   std::vector<uint8_t> inTree_;     // per joint of the last build: its inTree
   std::vector<Incidence> inc_;
