@@ -1,20 +1,18 @@
 // EGL backend of GlContext: a surfaceless context (EGL_MESA_platform_surfaceless, no window
 // system, no config: EGL_KHR_no_config_context) on Mesa's llvmpipe or whatever driver EGL finds.
 // Mesa removed OSMesa in 25.1; this is the back end that outlives it. Only this file includes EGL.
+// Built only where EGL is found (CMakeLists.txt); gl_backend.cpp knows whether it was.
 #include "render/gl_context.h"
 
-#ifdef HAIF_HAVE_EGL
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
 #include <cstdio>
 #include <cstring>
 #include <string>
-#endif
 
 namespace haif::render {
 
-#ifdef HAIF_HAVE_EGL
 namespace {
 
 std::string eglErrorText(const char* what) {
@@ -86,11 +84,5 @@ std::unique_ptr<GlContext> createEglContext(std::string* error) {
   if (!ctx->init(error)) return nullptr;
   return ctx;
 }
-#else
-std::unique_ptr<GlContext> createEglContext(std::string* error) {
-  if (error) *error = "EGL: this build has no EGL back end (libegl-dev was not found at configure time)";
-  return nullptr;
-}
-#endif
 
 }  // namespace haif::render

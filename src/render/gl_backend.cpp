@@ -33,13 +33,31 @@ bool parseGlBackend(const std::string& text, GlBackend& out) {
   return true;
 }
 
-std::unique_ptr<GlContext> createGlContext(GlBackend backend, std::string* error) {
+namespace {
+
+// The one back end asked for, or the reason this build cannot give it.
+std::unique_ptr<GlContext> createBackend(GlBackend backend, std::string* error) {
+#ifdef HAIF_HAVE_OSMESA
   if (backend == GlBackend::OsMesa) return createOsMesaContext(error);
+#endif
+#ifdef HAIF_HAVE_EGL
   if (backend == GlBackend::Egl) return createEglContext(error);
+#endif
+  if (error)
+    *error = backend == GlBackend::OsMesa
+                 ? "OSMesa: this build has no OSMesa back end (libosmesa6-dev was not found at configure time)"
+                 : "EGL: this build has no EGL back end (libegl-dev was not found at configure time)";
+  return nullptr;
+}
+
+}  // namespace
+
+std::unique_ptr<GlContext> createGlContext(GlBackend backend, std::string* error) {
+  if (backend != GlBackend::Auto) return createBackend(backend, error);
   std::string osmesaError;
-  if (auto ctx = createOsMesaContext(&osmesaError)) return ctx;
+  if (auto ctx = createBackend(GlBackend::OsMesa, &osmesaError)) return ctx;
   std::string eglError;
-  if (auto ctx = createEglContext(&eglError)) return ctx;
+  if (auto ctx = createBackend(GlBackend::Egl, &eglError)) return ctx;
   if (error) *error = "no OpenGL context: " + osmesaError + "; " + eglError;
   return nullptr;
 }

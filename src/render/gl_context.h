@@ -25,9 +25,11 @@ class GlContext {
 };
 
 /// Creates an OSMesa (llvmpipe) core-profile context of at least GL 3.3 and makes it current.
-/// Returns nullptr and fills *error when OSMesa cannot give one (or the build has no OSMesa).
+/// Returns nullptr and fills *error when OSMesa cannot give one. Defined only in builds that have
+/// OSMesa: call createGlContext.
 std::unique_ptr<GlContext> createOsMesaContext(std::string* error);
-/// The same through EGL's surfaceless platform (no window system, no config).
+/// The same through EGL's surfaceless platform (no window system, no config); likewise only in
+/// builds that have EGL.
 std::unique_ptr<GlContext> createEglContext(std::string* error);
 
 enum class GlBackend { Auto, OsMesa, Egl };

@@ -1,15 +1,13 @@
 // OSMesa backend of GlContext. Only this file includes the OSMesa header, so the rest of the
-// renderer is free of it (egl_context.cpp is the other back end).
+// renderer is free of it (egl_context.cpp is the other back end). Built only where OSMesa is found
+// (CMakeLists.txt); gl_backend.cpp knows whether it was.
 #include "render/gl_context.h"
 
-#ifdef HAIF_HAVE_OSMESA
 #include <GL/osmesa.h>
 
 #include <vector>
-#endif
 
 namespace haif::render {
-#ifdef HAIF_HAVE_OSMESA
 namespace {
 
 class OsMesaContext final : public GlContext {
@@ -64,11 +62,5 @@ std::unique_ptr<GlContext> createOsMesaContext(std::string* error) {
   if (!ctx->init(error)) return nullptr;
   return ctx;
 }
-#else
-std::unique_ptr<GlContext> createOsMesaContext(std::string* error) {
-  if (error) *error = "OSMesa: this build has no OSMesa back end (libosmesa6-dev was not found at configure time)";
-  return nullptr;
-}
-#endif
 
 }  // namespace haif::render
