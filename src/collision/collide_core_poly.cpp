@@ -2,6 +2,7 @@
 // Shallow case (the core does not touch the solid): exact closest points over the polyhedron's faces
 // and edges; a capsule lying on a face gets two points. Deep case (the core pierces the solid): SAT on
 // the face normals and segment x edge axes, so the normal is still the cheapest way out.
+#include "collision/axis_preference.h"
 #include "collision/geometry.h"
 #include "collision/polytope.h"
 
@@ -92,12 +93,17 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
   const Vec3 c0 = xp.applyInverse(w0), c1 = xp.applyInverse(w1);
   const Vec3 seg = c1 - c0;
   const bool isSeg = seg.squaredNorm() > 1e-12f;
-  // The whole core beyond a face plane by more than r + margin: no point can be within the margin.
-  // Most pairs the broad phase keeps are this far apart, and the closest-feature search below
-  // costs a pass over every face and edge.
+  // How far the core stays beyond each face plane, the largest kept for the deep case below. The
+  // whole core beyond one by more than r + margin: no point can be within the margin. Most pairs
+  // the broad phase keeps are this far apart, and the closest-feature search costs a pass over
+  // every face and edge.
+  float bestF = -1e30f;
+  int face = 0;
   for (int f = 0; f < P.numFaces; ++f) {
     const ConvexHull::Face& F = P.faces[f];
-    if (std::min(F.normal.dot(c0), F.normal.dot(c1)) - F.offset - r > margin) return 0;
+    const float s = std::min(F.normal.dot(c0), F.normal.dot(c1)) - F.offset - r;
+    if (s > margin) return 0;
+    if (s > bestF) { bestF = s; face = f; }
   }
 
   if (!segmentPierces(P, c0, c1)) {
@@ -160,14 +166,7 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
     }
   }
 
-  // Deep: SAT over face normals (and segment x edge axes for a capsule).
-  float bestF = -1e30f;
-  int face = 0;
-  for (int f = 0; f < P.numFaces; ++f) {
-    const ConvexHull::Face& F = P.faces[f];
-    const float s = std::min(F.normal.dot(c0), F.normal.dot(c1)) - F.offset - r;
-    if (s > bestF) { bestF = s; face = f; }
-  }
+  // Deep: SAT over face normals (bestF, above) and segment x edge axes for a capsule.
   float bestE = -1e30f;
   int edge = -1;
   Vec3 axis = Vec3::Zero();
@@ -187,8 +186,9 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
       if (s > bestE) { bestE = s; edge = k; axis = L; }
     }
   }
-  if (bestF > margin && (edge < 0 || bestE > margin)) return 0;
-  if (edge >= 0 && bestE > bestF + 1e-3f + 0.02f * std::fabs(bestF)) {
+  // The polyhedra's face-or-edge rule (axis_preference.h), without its margin share: that was
+  // measured on polyhedron landings only.
+  if (edge >= 0 && edgeBeatsFace(bestE, bestF, 0.0f)) {
     if (bestE > margin) return 0;
     const Vec3& a = P.verts[P.edges[edge].first];
     const Vec3& b = P.verts[P.edges[edge].second];
@@ -199,7 +199,6 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
     const Vec3 pos = 0.5f * (qp + qc - r * axis);
     return writeSingle(m, xp.apply(pos), xp.rotate(axis), -bestE, 0x40000u | uint32_t(edge));
   }
-  if (bestF > margin) return 0;
   if (faceContacts(P, face, c0, c1, isSeg, r, margin, xp, m) > 0) return m.count;
   // Nothing of the segment lies over the face: use its deepest end.
   const ConvexHull::Face& F = P.faces[face];
