@@ -1,6 +1,7 @@
 // Frame folders for `haif diff`: locating frames, pairing them, refusing bad input with a clear message,
 // and the stats.csv comparison that leaves timing columns out.
 #include "render/png_io.h"
+#include "support/scratch_folder.h"
 #include "tools/diff_report.h"
 #include "tools/frame_diff.h"
 #include "tools/stats_diff.h"
@@ -16,23 +17,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class FrameDiff : public ::testing::Test {
+class FrameDiff : public haif::test::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("haif_tools_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   void writeFrame(const fs::path& folder, const std::string& name, const Image& img) {
     fs::create_directories(folder);
     std::string error;
     ASSERT_TRUE(render::writePng((folder / name).string(), img.width, img.height, img.rgba.data(), &error)) << error;
   }
-
-  fs::path dir_;
 };
 
 TEST_F(FrameDiff, RunFolderResolvesToItsFramesAndReadsMasks) {

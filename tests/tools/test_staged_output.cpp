@@ -1,6 +1,7 @@
 // Output folders that appear whole or not at all (tools/staged_output.h): built beside the target,
 // moved into place on commit, replacing an earlier output as a whole; discarded without a trace
 // otherwise; and never replacing a folder the command did not write.
+#include "support/scratch_folder.h"
 #include "tools/staged_output.h"
 
 #include <gtest/gtest.h>
@@ -14,16 +15,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class StagedOutput : public ::testing::Test {
+class StagedOutput : public haif::test::ScratchFolderTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("haif_staged_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   // Names in `folder`, sorted.
   static std::vector<std::string> names(const fs::path& folder) {
     std::vector<std::string> out;
@@ -31,8 +24,6 @@ class StagedOutput : public ::testing::Test {
     std::sort(out.begin(), out.end());
     return out;
   }
-
-  fs::path dir_;
 };
 
 TEST_F(StagedOutput, NothingIsAtTheTargetUntilCommit) {
