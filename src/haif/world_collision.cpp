@@ -19,8 +19,8 @@ constexpr float kWarmStartMatchDistance = 0.02f;
 void World::updateBroadPhase() {
   const uint32_t n = bodyCount();
   const float dt = settings_.dt;
-  // Tight boxes (kept for buoyancy and metrics), then each swept by this step's motion so fast
-  // bodies find their pairs before they pass through them.
+  // Tight boxes (kept for buoyancy, metrics and the narrow phase's quick reject), then each swept
+  // by this step's motion so fast bodies find their pairs before they pass through them.
   parallelFor(n, 1024, [&](uint32_t begin, uint32_t end) {
     for (uint32_t i = begin; i < end; ++i)
       if (bodies_.kind[i] != BodyKind::Static && !bodies_.asleep[i]) bounds_[i] = computeAabb(shapes_[i], bodies_.xf[i]);
