@@ -27,9 +27,16 @@ class FrameBuilder {
   void build(const World& world, const CameraDesc& camera, render::FrameInput& frame) const;
 
  private:
+  /// Registers a hull's or mesh's geometry once (other shapes need none).
+  bool registerGeometry(const Shape& s, render::Renderer& renderer, std::string& error);
+  /// Kind, pose, size and mesh of one drawn shape at `xf`.
+  void placeShape(const Shape& s, const Transform& xf, render::Instance& in) const;
+  static void setPose(const Vec3& p, const Quat& q, render::Instance& in);
+
   std::map<const void*, uint32_t> meshIds_;  // geometry pointer -> render mesh id
   std::vector<uint32_t> meshOfBody_;
   std::vector<uint8_t> renderMeshOfBody_;  // 1: meshOfBody_ is the scene's render mesh
+  std::vector<std::vector<uint32_t>> drawnParts_;  // per compound body: the parts the scene draws
   uint32_t renderMeshes_ = 0;
 };
 

@@ -1,5 +1,7 @@
 #include "bullet/bullet_shapes.h"
 
+#include "collision/compound.h"
+
 #include <btBulletCollisionCommon.h>
 #include <LinearMath/btGeometryUtil.h>
 
@@ -76,6 +78,21 @@ btCollisionShape* BulletShapeStore::add(const Shape& s, const Quat& frame, std::
     case ShapeType::Plane:
       shape = std::make_unique<btStaticPlaneShape>(toBt(s.planeNormal), s.planeOffset);
       break;
+    case ShapeType::Compound: {
+      if (!s.compound) break;
+      // Bullet's body frame is the principal frame `frame` of the HAIF body frame: each part's pose is
+      // turned into it; the parts themselves are expressed in their own frames.
+      auto compound = std::make_unique<btCompoundShape>(true, int(s.compound->parts.size()));
+      const Quat toShape = frame.conjugate();
+      for (const CompoundShape::Part& part : s.compound->parts) {
+        btCollisionShape* child = add(part.shape, Quat::Identity(), error);
+        if (!child) return nullptr;
+        const Quat q = toShape * part.local.q;
+        compound->addChildShape(btTransform(btQuaternion(q.x(), q.y(), q.z(), q.w()), toBt(toShape * part.local.p)), child);
+      }
+      shape = std::move(compound);
+      break;
+    }
     default:
       break;
   }

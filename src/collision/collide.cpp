@@ -9,7 +9,8 @@ namespace haif {
 namespace {
 
 using detail::PairFn;
-constexpr int kTypes = int(ShapeType::Count);
+// The table covers the single shapes; compounds are taken apart before it (collide_compound.cpp).
+constexpr int kTypes = int(ShapeType::Compound);
 
 struct Entry {
   PairFn fn;
@@ -51,6 +52,8 @@ bool shapeUsable(const Shape& s) {
 int collide(const Shape& a, const Transform& xa, const Shape& b, const Transform& xb, float margin,
             Manifold& manifold) {
   manifold.count = 0;
+  if (a.type == ShapeType::Compound || b.type == ShapeType::Compound)
+    return detail::collideCompound(a, xa, b, xb, margin, manifold);
   const int ta = int(a.type), tb = int(b.type);
   if (ta < 0 || ta >= kTypes || tb < 0 || tb >= kTypes) return 0;
   const Entry& e = kTable[ta][tb];

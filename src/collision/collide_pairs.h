@@ -35,5 +35,8 @@ int collidePlaneHull(const Shape&, const Transform&, const Shape&, const Transfo
 /// Triangle mesh (static) first, any convex second.
 int collideMeshConvex(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
 
+/// Either shape (or both) a compound: its parts against the other's, one manifold for the pair.
+int collideCompound(const Shape&, const Transform&, const Shape&, const Transform&, float, Manifold&);
+
 }  // namespace detail
 }  // namespace haif

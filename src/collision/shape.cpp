@@ -1,5 +1,7 @@
 #include "collision/shape.h"
 
+#include "collision/compound.h"
+
 namespace haif {
 
 const char* shapeTypeName(ShapeType t) {
@@ -10,6 +12,7 @@ const char* shapeTypeName(ShapeType t) {
     case ShapeType::ConvexHull: return "hull";
     case ShapeType::TriangleMesh: return "mesh";
     case ShapeType::Plane: return "plane";
+    case ShapeType::Compound: return "compound";
     default: return "unknown";
   }
 }
@@ -27,6 +30,9 @@ Shape Shape::convexHull(std::shared_ptr<const ConvexHull> h) {
 }
 Shape Shape::triangleMesh(std::shared_ptr<const TriangleMesh> m) {
   Shape s; s.type = ShapeType::TriangleMesh; s.mesh = std::move(m); return s;
+}
+Shape Shape::compoundOf(std::shared_ptr<const CompoundShape> c) {
+  Shape s; s.type = ShapeType::Compound; s.compound = std::move(c); return s;
 }
 
 MassProperties computeMassProperties(const Shape& s, float density) {
@@ -62,6 +68,12 @@ MassProperties computeMassProperties(const Shape& s, float density) {
       if (s.hull) {
         mp.mass = density * s.hull->volume;
         mp.inertia = density * s.hull->inertiaPerDensity;
+      }
+      break;
+    case ShapeType::Compound:
+      if (s.compound) {
+        mp.mass = density * s.compound->volume;
+        mp.inertia = density * s.compound->inertiaPerDensity;
       }
       break;
     default:
@@ -111,6 +123,12 @@ Aabb computeAabb(const Shape& s, const Transform& xf) {
       b.hi = c + e;
       break;
     }
+    case ShapeType::Compound:
+      for (const CompoundShape::Part& part : s.compound->parts) {
+        const Transform at{xf.apply(part.local.p), xf.q * part.local.q};
+        b = b.merged(computeAabb(part.shape, at));
+      }
+      break;
     case ShapeType::Plane:
     default:
       b.lo = Vec3::Constant(-1e18f);
@@ -132,6 +150,11 @@ float smallestExtent(const Shape& s) {
         for (const Vec3& v : s.hull->vertices) lo = std::min(lo, f.normal.dot(v));
         m = std::min(m, f.offset - lo);
       }
+      return m;
+    }
+    case ShapeType::Compound: {
+      float m = 1e30f;
+      for (const CompoundShape::Part& part : s.compound->parts) m = std::min(m, smallestExtent(part.shape));
       return m;
     }
     default: return 1e30f;

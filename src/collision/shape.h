@@ -1,5 +1,6 @@
 // Collision shapes. A body owns exactly one shape, expressed in the body frame whose origin is
-// the body's centre of mass (hull points are re-centred when the hull is built).
+// the body's centre of mass (hull points and compound parts are re-centred when they are built).
+// A compound (collision/compound.h) holds several convex shapes at poses: a body of many parts.
 #pragma once
 
 #include "core/aabb.h"
@@ -12,7 +13,9 @@
 
 namespace haif {
 
-enum class ShapeType : uint8_t { Sphere = 0, Box, Capsule, ConvexHull, TriangleMesh, Plane, Count };
+enum class ShapeType : uint8_t { Sphere = 0, Box, Capsule, ConvexHull, TriangleMesh, Plane, Compound, Count };
+
+struct CompoundShape;
 
 const char* shapeTypeName(ShapeType t);
 
@@ -63,6 +66,7 @@ struct Shape {
   float planeOffset = 0.0f;
   std::shared_ptr<const ConvexHull> hull;   ///< convex hull
   std::shared_ptr<const TriangleMesh> mesh; ///< triangle mesh (static only)
+  std::shared_ptr<const CompoundShape> compound;  ///< compound: its parts
 
   static Shape sphere(float r);
   static Shape box(const Vec3& halfExtents);
@@ -70,6 +74,7 @@ struct Shape {
   static Shape plane(const Vec3& normal, float offset);
   static Shape convexHull(std::shared_ptr<const ConvexHull> h);
   static Shape triangleMesh(std::shared_ptr<const TriangleMesh> m);
+  static Shape compoundOf(std::shared_ptr<const CompoundShape> c);
 };
 
 /// Mass properties of a shape for a density (kg/m^3): mass and inertia tensor about the centre of mass.
@@ -86,7 +91,8 @@ MassProperties bodyMassProperties(const Shape& s, float density, float mass);
 /// a plane gives a huge box).
 Aabb computeAabb(const Shape& s, const Transform& xf);
 
-/// Smallest extent of a shape (used to express penetration as a fraction of body size).
+/// Smallest extent of a shape (used to express penetration as a fraction of body size); a
+/// compound's is its thinnest part's.
 float smallestExtent(const Shape& s);
 
 }  // namespace haif

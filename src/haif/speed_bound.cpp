@@ -7,9 +7,10 @@ namespace haif {
 
 void SpeedBound::addBody(const Shape& shape) {
   const Aabb box = computeAabb(shape, Transform());
-  const Vec3 half = 0.5f * (box.hi - box.lo);
+  // The farthest corner from the centre of mass (a hull's or compound's box is not centred on it).
+  const Vec3 far = box.lo.cwiseAbs().cwiseMax(box.hi.cwiseAbs());
   // Planes and meshes are static: their reach never enters a speed.
-  reach_.push_back(shape.type == ShapeType::Plane || shape.type == ShapeType::TriangleMesh ? 0.0f : half.norm());
+  reach_.push_back(shape.type == ShapeType::Plane || shape.type == ShapeType::TriangleMesh ? 0.0f : far.norm());
 }
 
 void SpeedBound::update(const BodyStore& bodies, const Vec3& gravity, float dt, float waterLift, float floor) {

@@ -3,6 +3,7 @@
 #include "haif/world_internal.h"
 
 #include "collision/collide.h"
+#include "collision/compound.h"
 
 namespace haif {
 
@@ -109,7 +110,14 @@ inline void updateAnchor(Contact& c, const Transform& xa, const Transform& xb) {
   c.anchored = true;
 }
 
-bool rolls(const Shape& s) { return s.type == ShapeType::Sphere || s.type == ShapeType::Capsule; }
+bool rolls(const Shape& s) {
+  if (s.type == ShapeType::Compound) {
+    for (const CompoundShape::Part& p : s.compound->parts)
+      if (rolls(p.shape)) return true;
+    return false;
+  }
+  return s.type == ShapeType::Sphere || s.type == ShapeType::Capsule;
+}
 
 }  // namespace
 

@@ -1,5 +1,7 @@
 #include "scene/body_parse.h"
 
+#include "collision/compound.h"
+
 #include "scene/asset_import.h"
 #include "scene/scene_validate.h"
 
@@ -55,7 +57,7 @@ Quat parseOrientation(const JsonNode& node) {
 
 namespace {
 
-const std::vector<std::string> kShapeTypes{"sphere", "box", "capsule", "hull", "mesh", "plane"};
+const std::vector<std::string> kShapeTypes{"sphere", "box", "capsule", "hull", "mesh", "plane", "compound"};
 
 ShapeType shapeTypeFromName(const JsonNode& node) {
   const std::string s = readString(node);
@@ -65,7 +67,9 @@ ShapeType shapeTypeFromName(const JsonNode& node) {
   if (s == "hull") return ShapeType::ConvexHull;
   if (s == "mesh") return ShapeType::TriangleMesh;
   if (s == "plane") return ShapeType::Plane;
-  fail(node, "unknown shape type '" + s + "'" + didYouMean(s, kShapeTypes) + "; use sphere, box, capsule, hull, mesh or plane");
+  if (s == "compound") return ShapeType::Compound;
+  fail(node, "unknown shape type '" + s + "'" + didYouMean(s, kShapeTypes) +
+                 "; use sphere, box, capsule, hull, mesh, plane or compound");
 }
 
 std::vector<Vec3> readPoints(const JsonNode& node) {
@@ -108,7 +112,7 @@ void loadAsset(const JsonNode& shape, const ParseContext& ctx, ShapeDesc& s) {
 
 ShapeDesc parseShape(const JsonNode& node, MotionType motion, const ParseContext& ctx) {
   requireObject(node);
-  const JsonNode typeNode = requireMember(node, "type", "one of sphere, box, capsule, hull, mesh, plane");
+  const JsonNode typeNode = requireMember(node, "type", "one of sphere, box, capsule, hull, mesh, plane, compound");
   ShapeDesc s;
   s.type = shapeTypeFromName(typeNode);
   if (isStaticOnlyShape(s.type) && motion != MotionType::Static)
@@ -184,6 +188,34 @@ ShapeDesc parseShape(const JsonNode& node, MotionType motion, const ParseContext
         s.planeNormal.normalize();
       }
       s.planeOffset = optFloat(node, "offset", 0.0f);
+      break;
+    }
+    case ShapeType::Compound: {
+      checkKeys(node, {"type", "parts"});
+      const JsonNode parts = requireMember(node, "parts", "[{\"shape\": {...}, \"position\": [x, y, z]}, ...]");
+      requireArray(parts);
+      if (parts.size() == 0) fail(parts, "a compound needs at least one part");
+      if (parts.size() > kMaxCompoundParts)
+        fail(parts, "a compound has at most " + std::to_string(kMaxCompoundParts) + " parts (got " +
+                        std::to_string(parts.size()) + ")");
+      for (size_t i = 0; i < parts.size(); ++i) {
+        const JsonNode part = parts.element(i);
+        requireObject(part);
+        checkKeys(part, {"shape", "position", "orientation", "draw"});
+        const JsonNode shape = requireMember(part, "shape", "e.g. {\"type\": \"box\", \"size\": [1, 1, 1]}");
+        CompoundPartDesc p;
+        // Parsed as a static body's shape so a mesh or plane part reaches the message below.
+        p.shape = parseShape(shape, MotionType::Static, ctx);
+        if (!compoundPartType(p.shape.type))
+          fail(shape.member("type"), std::string("a compound's part cannot be a ") + shapeTypeName(p.shape.type) +
+                                         "; use sphere, box, capsule or hull");
+        const JsonNode position = part.member("position"), orientation = part.member("orientation");
+        if (position.present()) p.position = readVec3(position);
+        if (orientation.present()) p.orientation = parseOrientation(orientation);
+        const JsonNode draw = part.member("draw");
+        if (draw.present()) p.draw = readBool(draw);
+        s.parts.push_back(std::move(p));
+      }
       break;
     }
     default: break;

@@ -1,5 +1,6 @@
 #include "scene/build_world.h"
 
+#include "collision/compound.h"
 #include "collision/convex_hull.h"
 #include "collision/triangle_mesh.h"
 
@@ -76,6 +77,61 @@ bool addSceneJoint(const SceneDesc& scene, const JointDesc& j, uint32_t firstBod
   return true;
 }
 
+// The engine shape for a scene shape; `centroid` is where its centre of mass sits in the scene's
+// body frame (hulls and compounds are re-centred on it).
+bool shapeFor(const ShapeDesc& s, Shape& out, Vec3& centroid, std::string& error) {
+  centroid = Vec3::Zero();
+  std::string why;
+  switch (s.type) {
+    case ShapeType::Sphere: out = Shape::sphere(s.radius); return true;
+    case ShapeType::Box: out = Shape::box(s.halfExtents); return true;
+    case ShapeType::Capsule: out = Shape::capsule(s.radius, s.halfHeight); return true;
+    case ShapeType::Plane: out = Shape::plane(s.planeNormal, s.planeOffset); return true;
+    case ShapeType::ConvexHull: {
+      auto hull = buildConvexHull(s.points, &why);
+      if (!hull) {
+        error = "cannot build convex hull: " + why;
+        return false;
+      }
+      centroid = hull->centroid;
+      out = Shape::convexHull(std::move(hull));
+      return true;
+    }
+    case ShapeType::TriangleMesh: {
+      auto mesh = buildTriangleMesh(s.meshVertices, s.meshIndices, &why);
+      if (!mesh) {
+        error = "cannot build triangle mesh: " + why;
+        return false;
+      }
+      out = Shape::triangleMesh(std::move(mesh));
+      return true;
+    }
+    case ShapeType::Compound: {
+      std::vector<Shape> parts(s.parts.size());
+      std::vector<Transform> poses(s.parts.size());
+      for (size_t i = 0; i < s.parts.size(); ++i) {
+        Vec3 unused;  // buildCompound places a hull part by its own centroid
+        if (!shapeFor(s.parts[i].shape, parts[i], unused, error)) {
+          error = "parts[" + std::to_string(i) + "]: " + error;
+          return false;
+        }
+        poses[i] = Transform{s.parts[i].position, s.parts[i].orientation};
+      }
+      auto compound = buildCompound(parts, poses, &why);
+      if (!compound) {
+        error = "cannot build compound: " + why;
+        return false;
+      }
+      centroid = compound->centroid;
+      out = Shape::compoundOf(std::move(compound));
+      return true;
+    }
+    default:
+      error = "unsupported shape type";
+      return false;
+  }
+}
+
 }  // namespace
 
 bool bodyDefFor(const SceneDesc& scene, const BodyDesc& b, BodyDef& def, std::string& error) {
@@ -92,37 +148,13 @@ bool bodyDefFor(const SceneDesc& scene, const BodyDesc& b, BodyDef& def, std::st
   def.restitution = mat.restitution;
   def.linearDamping = b.linearDamping;
   def.angularDamping = b.angularDamping;
-  const ShapeDesc& s = b.shape;
-  std::string why;
-  switch (s.type) {
-    case ShapeType::Sphere: def.shape = Shape::sphere(s.radius); break;
-    case ShapeType::Box: def.shape = Shape::box(s.halfExtents); break;
-    case ShapeType::Capsule: def.shape = Shape::capsule(s.radius, s.halfHeight); break;
-    case ShapeType::Plane: def.shape = Shape::plane(s.planeNormal, s.planeOffset); break;
-    case ShapeType::ConvexHull: {
-      auto hull = buildConvexHull(s.points, &why);
-      if (!hull) {
-        error = scene.sourcePath + ": " + b.where + ".shape: cannot build convex hull: " + why;
-        return false;
-      }
-      // The hull was re-centred on its centre of mass: move the body there.
-      def.xf.p += def.xf.q * hull->centroid;
-      def.shape = Shape::convexHull(std::move(hull));
-      break;
-    }
-    case ShapeType::TriangleMesh: {
-      auto mesh = buildTriangleMesh(s.meshVertices, s.meshIndices, &why);
-      if (!mesh) {
-        error = scene.sourcePath + ": " + b.where + ".shape: cannot build triangle mesh: " + why;
-        return false;
-      }
-      def.shape = Shape::triangleMesh(std::move(mesh));
-      break;
-    }
-    default:
-      error = scene.sourcePath + ": " + b.where + ".shape: unsupported shape type";
-      return false;
+  Vec3 centroid = Vec3::Zero();
+  if (!shapeFor(b.shape, def.shape, centroid, error)) {
+    error = scene.sourcePath + ": " + b.where + ".shape: " + error;
+    return false;
   }
+  // Hulls and compounds were re-centred on their centre of mass: move the body there.
+  def.xf.p += def.xf.q * centroid;
   return true;
 }
 

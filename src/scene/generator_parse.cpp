@@ -1,6 +1,7 @@
 #include "scene/generator_parse.h"
 
 #include "scene/generators.h"
+#include "scene/scene_validate.h"
 
 #include <cmath>
 #include <limits>
@@ -67,17 +68,7 @@ std::vector<std::string> keys(std::vector<std::string> specific) {
 
 // Axis-aligned extent of a shape turned by q: used to refuse grids whose bodies would overlap.
 Vec3 shapeExtent(const ShapeDesc& s, const Quat& q) {
-  Vec3 half = Vec3::Zero();
-  switch (s.type) {
-    case ShapeType::Sphere: half = Vec3::Constant(s.radius); break;
-    case ShapeType::Box: half = s.halfExtents; break;
-    case ShapeType::Capsule: half = Vec3(s.radius, s.radius + s.halfHeight, s.radius); break;
-    case ShapeType::ConvexHull:
-      for (const Vec3& p : s.points) half = half.cwiseMax(p.cwiseAbs());
-      break;
-    default: return Vec3::Zero();
-  }
-  return 2.0f * (q.toRotationMatrix().cwiseAbs() * half);
+  return 2.0f * (q.toRotationMatrix().cwiseAbs() * shapeHalfBox(s));
 }
 
 }  // namespace

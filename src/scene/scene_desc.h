@@ -22,6 +22,8 @@ struct MaterialDesc {
   float density = 1000.0f;  ///< kg/m^3, used when a body gives no mass
 };
 
+struct CompoundPartDesc;
+
 struct ShapeDesc {
   ShapeType type = ShapeType::Box;
   Vec3 halfExtents = Vec3::Constant(0.5f);  ///< box
@@ -34,6 +36,15 @@ struct ShapeDesc {
   std::vector<uint32_t> meshIndices;
   std::string asset;                        ///< asset path as written in the scene file (empty: none)
   Vec3 assetScale = Vec3::Ones();
+  std::vector<CompoundPartDesc> parts;      ///< compound: its parts (sphere, box, capsule or hull)
+};
+
+/// One part of a compound shape, placed in the body's frame (as the scene file places the body).
+struct CompoundPartDesc {
+  ShapeDesc shape;
+  Vec3 position = Vec3::Zero();
+  Quat orientation = Quat::Identity();
+  bool draw = true;  ///< false: collides but is not drawn (the glass front of a drum, to see inside)
 };
 
 /// A mesh drawn in place of a body's collision shape (the body still collides as its shape).

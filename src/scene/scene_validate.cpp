@@ -1,5 +1,7 @@
 #include "scene/scene_validate.h"
 
+#include "collision/compound.h"
+
 #include "collision/shape.h"
 #include "scene/json_reader.h"
 
@@ -62,6 +64,24 @@ bool hasTriangleWithArea(const std::vector<Vec3>& vertices, const std::vector<ui
   return false;
 }
 
+Vec3 shapeHalfBox(const ShapeDesc& s) {
+  Vec3 half = Vec3::Zero();
+  switch (s.type) {
+    case ShapeType::Sphere: half = Vec3::Constant(s.radius); break;
+    case ShapeType::Box: half = s.halfExtents; break;
+    case ShapeType::Capsule: half = Vec3(s.radius, s.radius + s.halfHeight, s.radius); break;
+    case ShapeType::ConvexHull:
+      for (const Vec3& p : s.points) half = half.cwiseMax(p.cwiseAbs());
+      break;
+    case ShapeType::Compound:
+      for (const CompoundPartDesc& p : s.parts)
+        half = half.cwiseMax(p.position.cwiseAbs() + p.orientation.toRotationMatrix().cwiseAbs() * shapeHalfBox(p.shape));
+      break;
+    default: break;
+  }
+  return half;
+}
+
 float shapeExtent(const ShapeDesc& s) {
   switch (s.type) {
     case ShapeType::Sphere: return 2.0f * s.radius;
@@ -73,21 +93,47 @@ float shapeExtent(const ShapeDesc& s) {
       for (const Vec3& p : s.points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
       return (hi - lo).maxCoeff();
     }
+    case ShapeType::Compound: {
+      // Over the parts' boxes (each about its own place), not the symmetric half box: a part set off
+      // to one side does not make the body twice as long.
+      Vec3 lo = Vec3::Constant(1e30f), hi = Vec3::Constant(-1e30f);
+      for (const CompoundPartDesc& p : s.parts) {
+        const Vec3 half = p.orientation.toRotationMatrix().cwiseAbs() * shapeHalfBox(p.shape);
+        lo = lo.cwiseMin(p.position - half);
+        hi = hi.cwiseMax(p.position + half);
+      }
+      return s.parts.empty() ? 0.0f : (hi - lo).maxCoeff();
+    }
     default: return 0.0f;
   }
 }
 
-float bodyMass(const SceneDesc& scene, const BodyDesc& b) {
-  if (b.mass > 0.0f) return b.mass;
-  const ShapeDesc& s = b.shape;
-  const float density = scene.materials[b.material].density;
+namespace {
+
+float shapeMass(const ShapeDesc& s, float density) {
   // The engine's own mass properties (collision/shape.h), so the check sees the mass it will use.
   switch (s.type) {
     case ShapeType::Sphere: return computeMassProperties(Shape::sphere(s.radius), density).mass;
     case ShapeType::Box: return computeMassProperties(Shape::box(s.halfExtents), density).mass;
     case ShapeType::Capsule: return computeMassProperties(Shape::capsule(s.radius, s.halfHeight), density).mass;
+    case ShapeType::Compound: {
+      float sum = 0.0f;
+      for (const CompoundPartDesc& p : s.parts) {
+        const float m = shapeMass(p.shape, density);
+        if (m == 0.0f) return 0.0f;  // a hull part: not known yet
+        sum += m;
+      }
+      return sum;
+    }
     default: return 0.0f;
   }
+}
+
+}  // namespace
+
+float bodyMass(const SceneDesc& scene, const BodyDesc& b) {
+  if (b.mass > 0.0f) return b.mass;
+  return shapeMass(b.shape, scene.materials[b.material].density);
 }
 
 namespace {
@@ -160,6 +206,25 @@ bool checkShape(Checker& c, const ShapeDesc& s, MotionType motion) {
     case ShapeType::Plane:
       if (!c.finiteVec("shape.normal", s.planeNormal) || !c.isFiniteNum("shape.offset", s.planeOffset)) return false;
       return s.planeNormal.norm() > 1e-6f || c.bad("shape.normal", "must not be the zero vector");
+    case ShapeType::Compound: {
+      if (s.parts.empty()) return c.bad("shape.parts", "a compound needs at least one part");
+      for (size_t i = 0; i < s.parts.size(); ++i) {
+        const CompoundPartDesc& p = s.parts[i];
+        const std::string at = "shape.parts[" + std::to_string(i) + "]";
+        if (!compoundPartType(p.shape.type))
+          return c.bad(at + ".shape.type", std::string("a compound's part cannot be a ") + shapeTypeName(p.shape.type) +
+                                               "; use sphere, box, capsule or hull");
+        if (!c.finiteVec(at + ".position", p.position)) return false;
+        const float qn = p.orientation.norm();
+        if (!std::isfinite(qn) || std::fabs(qn - 1.0f) > 1e-3f)
+          return c.bad(at + ".orientation", "must be a unit quaternion (norm " + formatNumber(qn) + ")");
+        if (!checkShape(c, p.shape, MotionType::Static)) {
+          c.issue.field = at + "." + c.issue.field;  // the part's own check names "shape.radius" etc.
+          return false;
+        }
+      }
+      return true;
+    }
     default: return c.bad("shape.type", "unknown shape type");
   }
 }

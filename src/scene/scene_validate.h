@@ -22,10 +22,14 @@ struct SceneIssue {
   std::string describe(const SceneDesc& scene) const;
 };
 
+/// Half edges (m) of a box about the body's origin that holds a movable shape in its own frame
+/// (zero for static-only shapes; a compound's holds every part).
+Vec3 shapeHalfBox(const ShapeDesc& s);
 /// Longest edge (m) of a movable shape's bounding box in its own frame (0 for static-only shapes).
 float shapeExtent(const ShapeDesc& s);
 /// Mass (kg) of a dynamic body: its own, or its material's density times its volume; 0 for a hull
-/// without an explicit mass (its volume is known only once the hull is built).
+/// (or a compound with a hull part) without an explicit mass (its volume is known only once the hull
+/// is built).
 float bodyMass(const SceneDesc& scene, const BodyDesc& b);
 
 /// Checks settings, materials, bodies, water volumes and joints. Returns false and fills `issue` with the

@@ -41,4 +41,31 @@ inline int countMotion(const SceneDesc& s, MotionType m) {
   return n;
 }
 
+// "mem/bad.json:LINE:COL: " of the first occurrence of `needle` in `text` (counted here, ASCII only).
+inline std::string at(const std::string& text, const std::string& needle, size_t skip = 0) {
+  size_t pos = text.find(needle);
+  for (size_t i = 0; i < skip && pos != std::string::npos; ++i) pos = text.find(needle, pos + 1);
+  EXPECT_NE(pos, std::string::npos) << needle;
+  int line = 1, col = 1;
+  for (size_t i = 0; i < pos; ++i) {
+    if (text[i] == '\n') ++line, col = 1;
+    else ++col;
+  }
+  return "mem/bad.json:" + std::to_string(line) + ":" + std::to_string(col) + ": ";
+}
+
+// A scene whose only body has the given members (after "shape").
+inline std::string body(const std::string& members, const std::string& shape = R"({"type": "sphere"})") {
+  return "{\n  \"bodies\": [\n    {\"shape\": " + shape + (members.empty() ? "" : ", " + members) + "}\n  ]\n}\n";
+}
+
+#define EXPECT_ERROR(text, needle, place_and_message)                               \
+  do {                                                                             \
+    const std::string t_ = (text);                                                 \
+    const std::string e_ = parseError(t_);                                         \
+    EXPECT_EQ(e_.rfind(at(t_, needle), 0), 0u) << "error: " << e_;                 \
+    EXPECT_NE(e_.find(place_and_message), std::string::npos) << "error: " << e_;   \
+    EXPECT_EQ(e_.find('\n'), std::string::npos) << "one line: " << e_;            \
+  } while (0)
+
 }  // namespace haif::test
