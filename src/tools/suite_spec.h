@@ -77,7 +77,7 @@ struct SuiteLoadOptions {
 };
 
 /// Reads and checks the suite file at `path`. One error line on failure: "FILE:LINE:COL: PLACE: what is
-/// wrong", e.g. "suite.json:12:17: jobs[3].frames: must be an integer in [1, 10000000] (got 0)".
+/// wrong", e.g. "suite.json:12:17: jobs[3].frames: must be in [1, 10000000] (got 0)".
 bool loadSuiteFile(const std::string& path, const SuiteLoadOptions& options, SuiteSpec& out, std::string& error);
 
 /// Same for suite text in memory; `path` names it in messages and scene paths are relative to its folder.
