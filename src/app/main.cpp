@@ -40,6 +40,10 @@ const char* const kUsage =
       "  stress          stress scenes (scenes/stress/) judged by their checks; DIR/stress.json;\n"
       "                  exit 0 all pass, 1 some fail, 2 bad input [SCENE|DIR ...] [--quick] [--out DIR]\n"
       "                  [--threads T]\n"
+      "  suite SUITE     run a suite file's jobs (run + checks, render + diff, stress) or one shard of them;\n"
+      "                  one report: DIR/report.json, report.html, junit.xml; exit 0 all pass, 1 some fail,\n"
+      "                  2 bad input [--out DIR] [--shard I/N] [--threads T] [--update-references]\n"
+      "                  'haif suite merge OUT_DIR SHARD_DIR...' joins the shards' reports into one\n"
       "  assets          write the generated mesh assets (OBJ, STL, PLY, glTF, GLB) [--out DIR]\n"
       "  help [COMMAND]  this text, or one command's part of it (also: haif COMMAND --help)\n";
 
@@ -91,7 +95,7 @@ int main(int argc, char** argv) {
   const std::pair<const char*, Command> commands[] = {
       {"run", haif::commandRun},         {"bench", haif::commandBench},   {"calibrate", haif::commandCalibrate},
       {"diff", haif::commandDiff},       {"compare", haif::commandCompare}, {"reel", haif::commandReel},
-      {"stress", haif::commandStress},   {"assets", haif::commandAssets}};
+      {"stress", haif::commandStress},   {"suite", haif::commandSuite},   {"assets", haif::commandAssets}};
   for (const auto& [name, command] : commands) {
     if (std::strcmp(cmd, name) != 0) continue;
     if (asksForHelp(argc, argv)) return commandUsage(name, stdout) ? 0 : 2;

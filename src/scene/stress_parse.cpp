@@ -62,7 +62,9 @@ double readLimit(const JsonNode& node) {
   return x;
 }
 
-StressCheck parseCheck(const JsonNode& node, const SceneDesc& scene) {
+}  // namespace
+
+StressCheck parseStressCheck(const JsonNode& node, const SceneDesc& scene) {
   requireObject(node);
   const JsonNode nameNode = requireMember(node, "check", "the check's name, e.g. max_drop_m");
   const std::string name = readString(nameNode);
@@ -106,8 +108,6 @@ StressCheck parseCheck(const JsonNode& node, const SceneDesc& scene) {
   return c;
 }
 
-}  // namespace
-
 const std::vector<std::string>& stressCheckNames() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> n;
@@ -128,7 +128,7 @@ StressDesc parseStress(const JsonNode& node, const SceneDesc& scene) {
   const JsonNode checks = requireMember(node, "checks", "a list of {\"check\": NAME, ...}");
   requireArray(checks);
   if (checks.size() == 0) fail(checks, "must list at least one check");
-  for (size_t i = 0; i < checks.size(); ++i) s.checks.push_back(parseCheck(checks.element(i), scene));
+  for (size_t i = 0; i < checks.size(); ++i) s.checks.push_back(parseStressCheck(checks.element(i), scene));
   return s;
 }
 

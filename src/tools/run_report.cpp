@@ -148,6 +148,23 @@ std::string summaryJson(const RunInfo& info, const std::vector<StepStats>& steps
   return j.dump(2) + "\n";
 }
 
+const std::vector<std::string>& summaryNumberKeys() {
+  static const std::vector<std::string> keys = [] {
+    World empty;  // no bodies: summaryJson only reads counts from it
+    RunInfo info;
+    info.budgetMs = 1.0;  // a budgeted run also writes i_min, floor_* and budget_feasible
+    info.renderMsPerFrameMedian = 0.0;
+    RunMetrics metrics;
+    metrics.begin(empty, 1);
+    std::vector<std::string> out;
+    const nlohmann::ordered_json j = nlohmann::ordered_json::parse(summaryJson(info, {}, metrics, empty));
+    for (const auto& [key, value] : j.items())
+      if (value.is_number() || value.is_null()) out.push_back(key);
+    return out;
+  }();
+  return keys;
+}
+
 std::string hashText(uint64_t hash) {
   char text[32];
   std::snprintf(text, sizeof text, "%016llx", (unsigned long long)hash);

@@ -35,6 +35,11 @@ double quantile(std::vector<double> values, double q);
 std::string summaryJson(const RunInfo& info, const std::vector<StepStats>& steps, const RunMetrics& metrics,
                         const World& world);
 
+/// The keys of summary.json whose values are numbers (or null when not measured), in the order it
+/// writes them, budgeted modes' keys included: what the checks of `haif suite` may name. Read from
+/// summaryJson itself, so the list cannot drift from the file.
+const std::vector<std::string>& summaryNumberKeys();
+
 /// Reads the `iterations_chosen` column of a stats.csv written by statsCsv (for replay mode).
 bool readChosenIterations(const std::string& path, std::vector<int>& out, std::string& error);
 

@@ -22,9 +22,10 @@ std::string number(double v) {
   return buf;
 }
 
-// The measured value of check `i` and whether it passes.
-StressCheckResult judge(const StressCheck& c, size_t i, const StressProbe& probe, const RunMetrics& metrics,
-                        const World& world) {
+}  // namespace
+
+StressCheckResult judgeStressCheck(const StressCheck& c, size_t i, const StressProbe& probe, const RunMetrics& metrics,
+                                   const World& world) {
   StressCheckResult r;
   r.check = c.name;
   r.limit = c.limit;
@@ -58,8 +59,6 @@ StressCheckResult judge(const StressCheck& c, size_t i, const StressProbe& probe
   r.criterion = c.name + of + (atLeast ? " >= " : " <= ") + number(c.limit);
   return r;
 }
-
-}  // namespace
 
 bool findStressScenes(const std::string& dir, std::vector<std::string>& paths, std::string& error) {
   namespace fs = std::filesystem;
@@ -133,7 +132,7 @@ bool runStressScene(const std::string& path, bool quick, int threads, StressScen
                {"ms_per_step_median", quantile(ms, 0.5)}};
   r.pass = !r.nan;
   for (size_t i = 0; i < desc.checks.size(); ++i) {
-    r.checks.push_back(judge(desc.checks[i], i, probe, metrics, world));
+    r.checks.push_back(judgeStressCheck(desc.checks[i], i, probe, metrics, world));
     if (!r.checks.back().pass || r.nan) r.checks.back().pass = false;
     r.pass = r.pass && r.checks.back().pass;
   }

@@ -31,6 +31,16 @@ struct StressSceneResult {
   double wallSeconds = 0.0;
 };
 
+class RunMetrics;
+class StressProbe;
+class World;
+struct StressCheck;
+
+/// The measured value of check `i` (its index in the list given to StressProbe::begin) after a run,
+/// and whether it passes: what `haif stress` and the run jobs of `haif suite` judge by.
+StressCheckResult judgeStressCheck(const StressCheck& c, size_t i, const StressProbe& probe, const RunMetrics& metrics,
+                                   const World& world);
+
 /// The scene files (*.json) in `dir`, sorted by name. False with `error` when none can be listed.
 bool findStressScenes(const std::string& dir, std::vector<std::string>& paths, std::string& error);
 

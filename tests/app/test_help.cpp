@@ -14,7 +14,8 @@ TEST(Help, EveryCommandPrintsItsOwnOptionsAndDoesNothingElse) {
   const auto dir = scratchDir("haif_help");
   const std::pair<const char*, const char*> commands[] = {
       {"run", "--budget-ms"}, {"bench", "--engines"},   {"calibrate", "--out"}, {"compare", "--left"},
-      {"reel", "--check"},    {"diff", "--threshold"}, {"stress", "--quick"},  {"assets", "--out"}};
+      {"reel", "--check"},    {"diff", "--threshold"}, {"stress", "--quick"},  {"suite", "--shard"},
+      {"assets", "--out"}};
   for (const auto& [name, option] : commands) {
     for (const std::string& form : {std::string(name) + " --help", std::string(name) + " -h", "help " + std::string(name)}) {
       const auto out = dir / "out";
