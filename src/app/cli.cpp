@@ -1,5 +1,7 @@
 #include "app/cli.h"
 
+#include "tools/diff_report.h"
+
 #include <cmath>
 #include <cstdlib>
 
@@ -73,6 +75,17 @@ bool CommandLine::getDouble(const std::string& key, double lo, double hi, double
   }
   out = v;
   return true;
+}
+
+std::string commandLineOf(int argc, char** argv) {
+  std::string s = "haif";
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const bool plain = !a.empty() && a.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                         "0123456789-_./:=,+") == std::string::npos;
+    s += " " + (plain ? a : shellQuote(a));
+  }
+  return s;
 }
 
 }  // namespace haif

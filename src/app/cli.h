@@ -34,4 +34,8 @@ class CommandLine {
   std::vector<std::string> positional_;
 };
 
+/// The command as typed, "haif ARG ...", each argument shell-quoted unless it is plainly safe: what a
+/// report records so its run can be repeated.
+std::string commandLineOf(int argc, char** argv);
+
 }  // namespace haif

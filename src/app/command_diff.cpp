@@ -109,17 +109,6 @@ bool resolveMasks(const std::string& spec, bool explicitMask, const FrameFolder&
   return true;
 }
 
-std::string commandLineOf(int argc, char** argv) {
-  std::string s = "haif";
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const bool plain = a.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_./:=,+") ==
-                       std::string::npos;
-    s += " " + (plain && !a.empty() ? a : shellQuote(a));
-  }
-  return s;
-}
-
 }  // namespace
 
 int commandDiff(int argc, char** argv) {

@@ -40,17 +40,6 @@ int fail(const std::string& message, int status) {
   return status;
 }
 
-std::string commandLineOf(int argc, char** argv) {
-  std::string s = "haif";
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    const bool plain = !a.empty() && a.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                         "0123456789-_./:=,+") == std::string::npos;
-    s += " " + (plain ? a : shellQuote(a));
-  }
-  return s;
-}
-
 // The three report files, written into the staged folder and moved into place together.
 bool writeReport(StagedFolder& output, const SuiteReport& report, std::string& error) {
   return writeFileAtomic(output.path() + "/report.json", suiteReportJson(report), error) &&
