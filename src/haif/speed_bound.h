@@ -43,6 +43,8 @@ class SpeedBound {
   /// Tracks the lowest dynamic body (for the free-fall term); call after positions moved.
   void noteLowest(const BodyStore& bodies, const Vec3& up);
   float limit() const { return limit_; }
+  /// A body's bounding radius about its centre of mass (0 for planes and meshes).
+  float reach(uint32_t body) const { return reach_[body]; }
 
   SpeedBoundSettings settings;
 

@@ -149,6 +149,9 @@ class World {
  private:
   void updateBroadPhase();
   void narrowPhase();
+  /// How far a compound's far parts move in a second from its spin (|ω| times its reach); 0 for
+  /// single shapes (their margin follows the centre's speed only).
+  float spinReach(uint32_t body) const;
   void solve(int iterations);
   void solveIslands(int iterations);
   void splitGiantIslands();

@@ -121,6 +121,10 @@ bool rolls(const Shape& s) {
 
 }  // namespace
 
+float World::spinReach(uint32_t body) const {
+  return shapes_[body].type == ShapeType::Compound ? bodies_.w[body].norm() * speedBound_.reach(body) : 0.0f;
+}
+
 void World::narrowPhase() {
   const uint32_t n = static_cast<uint32_t>(contacts_.size());
   wakeFlag_.resize(n);
@@ -166,9 +170,14 @@ void World::narrowPhase() {
         continue;  // same points and ids: the impulses stay where they are
       }
       const Manifold old = c.manifold;
+      // A compound's parts sit away from its centre and sweep |ω| r a second besides its centre's
+      // motion: a hammer's head turning at 8 rad/s on a 0.45 m handle went through an 8 cm table top
+      // that the margin of its centre's speed missed. Single shapes keep the linear margin: on every
+      // body the spin term cost the swept pit 58 % of its step and lowered no pour's penetration.
+      const float spin = (spinReach(c.a) + spinReach(c.b)) * settings_.dt;
       // A pair stays while its fat boxes overlap, but two in three of a churning pile's pairs are
       // farther apart than the margin: their tight boxes, widened by it, already say no point can be.
-      const float reach = settings_.contactMargin + rel;
+      const float reach = settings_.contactMargin + rel + spin;
       if (bounds_[c.a].expanded(reach).overlaps(bounds_[c.b])) collide(shapes_[c.a], xa, shapes_[c.b], xb, reach, c.manifold);
       else c.manifold.count = 0;
       if (reusable) rememberManifold(c.manifold, xa, xb, c.cache);

@@ -57,6 +57,21 @@ TEST(SceneFiles, ShowcaseScenesHaveTheirPromisedContent) {
   for (const BodyDesc& b : tower.bodies)
     fastHeavyBall |= b.shape.type == ShapeType::Sphere && b.mass >= 100.0f && b.linearVelocity.norm() > 10.0f;
   EXPECT_TRUE(fastHeavyBall);
+
+  // The tumbler: one kinematic drum (a compound) turning about its axis, 2000+ bodies inside it.
+  const SceneDesc tumbler = loadReferenceScene("tumbler.json");
+  ASSERT_FALSE(tumbler.bodies.empty());
+  const BodyDesc& drum = tumbler.bodies[0];
+  EXPECT_EQ(drum.motion, MotionType::Kinematic);
+  EXPECT_EQ(drum.shape.type, ShapeType::Compound);
+  EXPECT_GE(drum.shape.parts.size(), 16u);
+  EXPECT_GT(drum.angularVelocity.norm(), 0.3f);
+  EXPECT_GE(countMotion(tumbler, MotionType::Dynamic), 2000);
+
+  const SceneDesc compounds = loadReferenceScene("compound_showcase.json");
+  int compoundBodies = 0;
+  for (const BodyDesc& b : compounds.bodies) compoundBodies += b.shape.type == ShapeType::Compound;
+  EXPECT_GE(compoundBodies, 60);
 }
 
 TEST(SceneFiles, DefaultsAreApplied) {
