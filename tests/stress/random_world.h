@@ -1,8 +1,9 @@
 // Small random worlds for the randomized stress test: random shapes (sphere, box, capsule, convex
-// hull), sizes, masses, velocities and overlaps above a ground box. Everything comes from one
+// hull, and compounds of them when asked), sizes, masses, velocities and overlaps above a ground box. Everything comes from one
 // std::mt19937 seeded with the world's seed, so a failing world is reproduced from its seed alone.
 #pragma once
 
+#include "collision/compound.h"
 #include "collision/convex_hull.h"
 #include "dynamics/joint.h"
 #include "haif/world.h"
@@ -52,6 +53,7 @@ inline Quat randomRotation(std::mt19937& rng) {
 struct RandomWorldKinds {
   bool joints = false;     ///< ball and hinge joints: chains, loops (a closed ring, a body joined twice)
   bool kinematic = false;  ///< a kinematic paddle sweeping through the bodies
+  bool compounds = false;  ///< some bodies are compounds of 2 to 4 parts (spheres, boxes, capsules)
 };
 
 /// A random world: ground, 2 to 12 bodies in a 3 m x 3 m x 3 m region (so many start overlapping),
@@ -69,11 +71,11 @@ inline RandomWorld makeRandomWorld(uint32_t seed, RandomWorldKinds kinds = {}) {
   w.addBody(ground);
 
   const int count = std::uniform_int_distribution<int>(2, 12)(rng);
-  const char* names[] = {"sphere", "box", "capsule", "hull"};
+  const char* names[] = {"sphere", "box", "capsule", "hull", "compound"};
   std::vector<uint32_t> ids;
   for (int k = 0; k < count; ++k) {
     BodyDef d;
-    const int type = std::uniform_int_distribution<int>(0, 3)(rng);
+    const int type = std::uniform_int_distribution<int>(0, kinds.compounds ? 4 : 3)(rng);
     const float size = logUniform(rng, 0.05f, 1.5f);  // bounding radius
     float radius = size;
     switch (type) {
@@ -88,6 +90,26 @@ inline RandomWorld makeRandomWorld(uint32_t seed, RandomWorldKinds kinds = {}) {
         const float r = size * uniform(rng, 0.2f, 1.0f), hh = size * uniform(rng, 0.0f, 1.0f);
         d.shape = Shape::capsule(r, hh);
         radius = r + hh;
+        break;
+      }
+      case 4: {
+        // 2 to 4 parts within the bounding radius, at random poses: bars, dumbbells, odd clusters.
+        const int n = std::uniform_int_distribution<int>(2, 4)(rng);
+        std::vector<Shape> parts;
+        std::vector<Transform> poses;
+        radius = 0.0f;
+        for (int i = 0; i < n; ++i) {
+          const float part = size * uniform(rng, 0.2f, 0.5f);
+          const int kind = std::uniform_int_distribution<int>(0, 2)(rng);
+          parts.push_back(kind == 0   ? Shape::sphere(part)
+                          : kind == 1 ? Shape::box(part * Vec3(uniform(rng, 0.3f, 1.0f), uniform(rng, 0.3f, 1.0f), 1.0f))
+                                      : Shape::capsule(0.4f * part, part));
+          poses.push_back(Transform{randomUnit(rng) * (size - 2.0f * part) * uniform(rng, 0.0f, 1.0f), randomRotation(rng)});
+          radius = std::max(radius, poses.back().p.norm() + 2.0f * part);
+        }
+        auto c = buildCompound(parts, poses, nullptr);
+        d.shape = Shape::compoundOf(std::move(c));
+        radius *= 2.0f;  // the centre of mass moves from the origin the parts were placed about
         break;
       }
       default: {
