@@ -19,6 +19,7 @@ void World::setController(std::unique_ptr<IterationController> c) { controller_ 
 
 void World::setThreads(int threads) {
   settings_.threads = std::max(1, threads);
+  workerThreads_ = settings_.threads;
   // The arena's worker threads are created once and reused by every step.
   arena_ = settings_.threads > 1 ? std::make_unique<tbb::task_arena>(settings_.threads) : nullptr;
 #ifdef HAIF_TSAN
@@ -111,6 +112,9 @@ void World::boundSpeeds() {
 
 void World::step() {
   const auto t0 = Clock::now();
+  // settings() is writable: a thread count set there takes effect here, before anything runs on the
+  // workers, so the arena, the phase clocks and the controller's cost split never disagree.
+  if (settings_.threads != workerThreads_) setThreads(settings_.threads);
   const uint32_t n = bodyCount();
   const float dt = settings_.dt;
   stats_ = StepStats{};

@@ -111,6 +111,8 @@ class World {
   /// Worker threads used by the parallel stages (1 = everything on the calling thread).
   void setThreads(int threads);
   int threads() const { return settings_.threads; }
+  /// Threads the parallel stages run on now (settings().threads takes effect at the next step).
+  int workerThreads() const { return workerThreads_; }
   /// Measure the solve error (docs/metrics.md) every `every` steps (0: never). Costs a converged solve.
   void setSolveErrorInterval(int every) { solveErrorEvery_ = every; }
 
@@ -248,6 +250,7 @@ class World {
 
   std::unique_ptr<IterationController> controller_;
   std::unique_ptr<tbb::task_arena> arena_;
+  int workerThreads_ = 1;  // what arena_ (or pool_) was made for
 #ifdef HAIF_TSAN
   std::unique_ptr<TsanPool> pool_;  // stands in for arena_ under ThreadSanitizer (haif/tsan_pool.h)
 #endif
