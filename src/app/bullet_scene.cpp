@@ -18,7 +18,7 @@ class BulletScene final : public SimulatedScene {
   bool open(const std::string& scenePath, int iterations, std::string& error) {
     run_ = BulletEngineRun::create(scenePath, iterations, error);
     if (!run_) return false;
-    shadow_ = std::make_unique<World>(worldSettingsFor(run_->scene()));
+    shadow_ = std::make_unique<World>(run_->scene().settings.world);
     if (!buildWorld(run_->scene(), *shadow_, error)) return false;
     spec_ = "bullet:" + std::to_string(iterations);
     description_ = "Bullet 3, " + std::to_string(iterations) + " solver iterations";
@@ -30,7 +30,7 @@ class BulletScene final : public SimulatedScene {
   const std::string& sceneName() const override { return run_->scene().name; }
   int sceneFrames() const override { return run_->scene().settings.frames; }
   int bodyCount() const override { return int(run_->bodyCount()); }
-  double stepSeconds() const override { return run_->scene().settings.dt; }
+  double stepSeconds() const override { return run_->scene().settings.world.dt; }
   float budgetMs() const override { return 0.f; }
   float iMin() const override { return float(iterations()); }
   float iMax() const override { return float(iterations()); }

@@ -76,7 +76,7 @@ void parseItem(const JsonNode& node, const std::string& baseDir, ReelItem& item)
   SceneDesc desc;
   std::string why;
   if (!loadSceneFile(item.scenePath, desc, why)) fail(scene, why);
-  item.stepSeconds = desc.settings.dt;
+  item.stepSeconds = desc.settings.world.dt;
 }
 
 void parseDocument(const JsonNode& root, const std::string& baseDir, ReelPlaylist& p) {

@@ -83,7 +83,7 @@ class HaifScene : public SimulatedScene {
   const std::string& sceneName() const override { return sim_.scene.name; }
   int sceneFrames() const override { return sim_.scene.settings.frames; }
   int bodyCount() const override { return int(sim_.world->bodyCount()); }
-  double stepSeconds() const override { return sim_.scene.settings.dt; }
+  double stepSeconds() const override { return sim_.scene.settings.world.dt; }
   float budgetMs() const override { return budgetMs_; }
   float iMin() const override { return iMin_; }
   float iMax() const override { return iMax_; }

@@ -84,7 +84,7 @@ bool BulletWorld::build(const SceneDesc& scene, int iterations, std::string& err
     error = scene.sourcePath + ": water: the Bullet baseline has no buoyancy; scenes with water run on HAIF only";
     return false;
   }
-  const WorldSettings ws = worldSettingsFor(scene);
+  const WorldSettings ws = scene.settings.world;
   m.dt = ws.dt;
   m.iterations = iterations > 0 ? iterations : ws.iterations;
   m.world.setGravity(toBt(ws.gravity));

@@ -22,6 +22,7 @@
 #include "haif/speed_bound.h"
 #include "haif/step_stats.h"
 #include "haif/tsan_pool.h"
+#include "haif/world_settings.h"
 
 #include <tbb/task_arena.h>
 
@@ -30,47 +31,6 @@
 #include <vector>
 
 namespace haif {
-
-struct WorldSettings {
-  float dt = 1.0f / 60.0f;
-  Vec3 gravity = Vec3(0.0f, -9.81f, 0.0f);
-  int iterations = 10;              ///< used by the default (fixed) controller
-  float omega = 1.0f;               ///< SOR relaxation in [1, 2)
-  float beta = 0.2f;                ///< Baumgarte factor
-  float slop = 0.005f;              ///< penetration allowed before correction (m)
-  float restitutionThreshold = 1.0f;///< m/s
-  float contactMargin = 0.02f;      ///< speculative distance (m) beyond which points are not reported
-  bool warmStart = true;
-  float maxPushVelocity = 0.2f;     ///< cap on the Baumgarte push-out speed (m/s)
-  bool frictionAnchors = true;      ///< friction pulls back the drift of sticking contacts (dynamics/contact_solver.h)
-  bool topDownOrder = true;         ///< solve the highest contacts of an island first
-  bool accelerate = true;           ///< conjugate-gradient momentum between sweeps (contact_solver.h)
-  /// Momentum only for islands at least this many layers of bodies deep (World::supportLayers): it
-  /// carries a deep pile's weight down, and only adds overshoot to a low one (world.cpp).
-  float momentumLayers = 16.0f;
-  bool coldStartFromWeight = true;  ///< new contacts of a resting pile start from the weight they carry
-  /// Sweep contacts kLanes manifolds at a time with SIMD, in lane batches (wide_contact_solver.h,
-  /// lane_batches.h). Off by default: 3.8× faster per manifold in cache, but no faster yet on whole
-  /// scenes (docs/solver.md, "Wide sweeps").
-  bool wideSolve = false;
-  bool chainSolve = true;           ///< solve the normal rows of chain-shaped islands (stacks) exactly
-  bool reuseManifolds = true;       ///< keep a pair's manifold while its bodies keep still (manifold_cache.h)
-  JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)
-  SpeedBoundSettings speedBound;    ///< the bound on every body's speed (haif/speed_bound.h)
-  /// Bodies pressed from opposite sides by static or kinematic ones get no push-out and carry no
-  /// impulse between steps, and their static contacts are solved last (haif/pinch.h).
-  bool resolvePinches = true;
-  /// Bodies in contact moving slower than this fraction of |g| dt are slowed before their poses move:
-  /// the solve's leftover creep in a resting pile (haif/rest_damping.h). 0: off.
-  float restDamping = 0.05f;
-  bool sleeping = false;
-  float timeToSleep = 0.5f;         ///< s an island must rest before it sleeps
-  float sleepLinear = 0.05f;        ///< m/s
-  float sleepAngular = 0.05f;       ///< rad/s
-  float residualTolerance = 0.0f;   ///< islands stop iterating below this velocity correction (0: never)
-  double budgetMs = 0.0;            ///< frame budget given to the controller (0: none)
-  int threads = 1;
-};
 
 struct BodyDef {
   BodyKind kind = BodyKind::Dynamic;

@@ -8,24 +8,6 @@
 
 namespace haif {
 
-WorldSettings worldSettingsFor(const SceneDesc& scene) {
-  WorldSettings s;
-  s.dt = scene.settings.dt;
-  s.gravity = scene.settings.gravity;
-  s.iterations = scene.settings.iterations;
-  s.omega = scene.settings.omega;
-  s.beta = scene.settings.beta;
-  s.slop = scene.settings.slop;
-  s.sleeping = scene.settings.sleeping;
-  s.accelerate = scene.settings.accelerate;
-  s.momentumLayers = scene.settings.momentumLayers;
-  s.chainSolve = scene.settings.chainSolve;
-  s.wideSolve = scene.settings.wideSolve;
-  s.reuseManifolds = scene.settings.reuseManifolds;
-  s.restDamping = scene.settings.restDamping;
-  return s;
-}
-
 namespace {
 
 BodyKind kindOf(MotionType m) {

@@ -8,9 +8,6 @@
 
 namespace haif {
 
-/// World settings from the scene's simulation settings.
-WorldSettings worldSettingsFor(const SceneDesc& scene);
-
 /// The world-side definition of one scene body: shape built (hulls re-centred on their centre of
 /// mass, which moves the body there), material and motion copied. Another engine built from the same
 /// scene (the Bullet baseline) starts from this too, so both see identical geometry and mass.

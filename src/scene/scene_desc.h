@@ -5,6 +5,7 @@
 #include "collision/shape.h"
 #include "core/math.h"
 #include "dynamics/joint.h"
+#include "haif/world_settings.h"
 #include "scene/stress_desc.h"
 
 #include <cstdint>
@@ -95,21 +96,11 @@ struct JointDesc {
   std::string where;               ///< place in the scene file, e.g. "joints[3]"
 };
 
+/// The scene file's "settings": the World's own settings (haif/world_settings.h), which the file sets
+/// a part of, and how many steps `haif run` takes.
 struct SimSettings {
-  float dt = 1.0f / 60.0f;
-  Vec3 gravity = Vec3(0.0f, -9.81f, 0.0f);
-  int iterations = 10;      ///< solver iterations (fixed mode)
-  float omega = 1.0f;       ///< SOR relaxation factor, in [1, 2)
-  float beta = 0.2f;        ///< Baumgarte factor
-  float slop = 0.005f;      ///< allowed penetration (m) before position correction
-  bool sleeping = false;    ///< bodies (islands) at rest go to sleep
-  bool accelerate = true;   ///< conjugate-gradient momentum between solver sweeps
-  float momentumLayers = 16.0f;  ///< momentum only for islands at least this many layers deep (docs/solver.md)
-  bool chainSolve = true;   ///< exact solve of chain-shaped islands (stacks): dynamics/contact_chain.h
-  bool wideSolve = false;   ///< SIMD sweeps over lane batches: dynamics/wide_contact_solver.h
-  bool reuseManifolds = true;  ///< keep manifolds of pairs at rest: collision/manifold_cache.h
-  float restDamping = 0.05f;   ///< bodies in contact slower than this fraction of |g| dt are slowed: haif/rest_damping.h
-  int frames = 300;         ///< default number of steps for `haif run`
+  WorldSettings world;
+  int frames = 300;  ///< default number of steps for `haif run`
 };
 
 struct CameraDesc {

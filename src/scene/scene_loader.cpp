@@ -49,7 +49,8 @@ std::string syntaxMessage(const std::string& what) {
   return bracket == std::string::npos ? what : what.substr(bracket + 2);
 }
 
-void parseSettings(const JsonNode& node, SimSettings& s) {
+void parseSettings(const JsonNode& node, SimSettings& settings) {
+  WorldSettings& s = settings.world;
   checkKeys(node, {"dt", "gravity", "iterations", "omega", "beta", "slop", "sleeping", "accelerate", "momentum_layers",
                    "chain_solve", "wide_solve", "reuse_manifolds", "rest_damping", "frames"});
   s.dt = optPositive(node, "dt", s.dt);
@@ -80,7 +81,7 @@ void parseSettings(const JsonNode& node, SimSettings& s) {
     if (!(s.restDamping >= 0.0f && s.restDamping <= 1.0f))
       fail(rest, "must be in [0, 1] (got " + formatNumber(s.restDamping) + "; 0 turns it off)");
   }
-  s.frames = optInt(node, "frames", s.frames, 1, 100000000);
+  settings.frames = optInt(node, "frames", settings.frames, 1, 100000000);
 }
 
 // Materials: {"name": {friction, restitution, density}}; "default" may be redefined.

@@ -318,7 +318,7 @@ bool checkJoint(Checker& c, const SceneDesc& scene, const JointDesc& j) {
 bool validateScene(const SceneDesc& scene, SceneIssue& issue) {
   issue = SceneIssue{};
   Checker c{issue};
-  const SimSettings& s = scene.settings;
+  const WorldSettings& s = scene.settings.world;
   if (!c.positive("settings.dt", s.dt)) return false;
   if (!c.finiteVec("settings.gravity", s.gravity)) return false;
   if (s.iterations < 1) return c.bad("settings.iterations", "must be >= 1 (got " + std::to_string(s.iterations) + ")");
@@ -331,7 +331,8 @@ bool validateScene(const SceneDesc& scene, SceneIssue& issue) {
   if (!c.nonNegative("settings.rest_damping", s.restDamping)) return false;
   if (s.restDamping > 1.0f)
     return c.bad("settings.rest_damping", "must be in [0, 1] (got " + formatNumber(s.restDamping) + "; 0 turns it off)");
-  if (s.frames < 1) return c.bad("settings.frames", "must be >= 1 (got " + std::to_string(s.frames) + ")");
+  if (scene.settings.frames < 1)
+    return c.bad("settings.frames", "must be >= 1 (got " + std::to_string(scene.settings.frames) + ")");
 
   if (scene.materials.empty()) return c.bad("materials", "materials[0] (\"default\") must exist");
   for (const MaterialDesc& m : scene.materials) {

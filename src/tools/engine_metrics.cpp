@@ -7,7 +7,7 @@ namespace haif {
 void EngineMetrics::begin(const EngineRun& run, uint64_t plannedSteps) {
   *this = EngineMetrics{};
   plannedSteps_ = plannedSteps;
-  window_ = uint64_t(std::max(1L, std::lround(1.0 / run.scene().settings.dt)));
+  window_ = uint64_t(std::max(1L, std::lround(1.0 / run.scene().settings.world.dt)));
   run.readBodies(bodies_);
   startY_.resize(bodies_.size());
   for (size_t i = 0; i < bodies_.size(); ++i) startY_[i] = bodies_[i].p.y();

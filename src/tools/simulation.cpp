@@ -47,14 +47,14 @@ bool parseSolverSpec(const std::string& text, SolverSpec& out, std::string& erro
 bool makeSimulation(const std::string& scenePath, const SolverSpec& spec, int threads, Simulation& sim,
                     std::string& error) {
   if (!loadSceneFile(scenePath, sim.scene, error)) return false;
-  WorldSettings ws = worldSettingsFor(sim.scene);
+  WorldSettings ws = sim.scene.settings.world;
   ws.threads = threads;
   sim.world = std::make_unique<World>(ws);
   if (!buildWorld(sim.scene, *sim.world, error)) return false;
   World& w = *sim.world;
   sim.mode = spec.mode;
   if (spec.mode == "fixed") {
-    const int n = spec.iterations > 0 ? spec.iterations : sim.scene.settings.iterations;
+    const int n = spec.iterations > 0 ? spec.iterations : sim.scene.settings.world.iterations;
     w.settings().iterations = n;
     w.setController(std::make_unique<FixedController>(n));
   } else if (spec.mode == "adaptive" || spec.mode == "model") {

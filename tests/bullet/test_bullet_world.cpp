@@ -207,7 +207,7 @@ TEST(BulletWorld, PrincipalFrameReadsBackAsTheScenePose) {
   // An irregular hull has a non-diagonal inertia tensor: Bullet's body frame is rotated to its
   // principal axes, which must not show in the pose it reports.
   SceneDesc s = emptyScene();
-  s.settings.gravity = Vec3::Zero();
+  s.settings.world.gravity = Vec3::Zero();
   BodyDesc hull;
   hull.shape.type = ShapeType::ConvexHull;
   hull.shape.points = {Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 0.5f), Vec3(1, 1, 0.5f)};
@@ -240,7 +240,7 @@ TEST(BulletWorld, WaterIsRefusedWithAClearError) {
 
 TEST(BulletWorld, IterationCountComesFromTheCallerOrTheScene) {
   SceneDesc s = emptyScene();
-  s.settings.iterations = 7;
+  s.settings.world.iterations = 7;
   s.bodies.push_back(box(Vec3::Zero()));
   BulletWorld a, b;
   build(a, s, 0);

@@ -14,7 +14,7 @@ struct SceneRun {
 };
 
 SceneRun runScene(const SceneDesc& scene, int steps, int iterations) {
-  WorldSettings s = worldSettingsFor(scene);
+  WorldSettings s = scene.settings.world;
   s.iterations = iterations;
   World w(s);
   std::string error;
@@ -67,7 +67,7 @@ TEST(JointSceneFiles, EveryJointedSceneRuns) {
     SCOPED_TRACE(name);
     const SceneDesc s = loadReferenceScene(name);
     EXPECT_GT(s.joints.size(), 0u);
-    const SceneRun r = runScene(s, 120, s.settings.iterations);
+    const SceneRun r = runScene(s, 120, s.settings.world.iterations);
     EXPECT_TRUE(r.finite);
     EXPECT_LT(r.maxJointError, 0.05f);
   }
@@ -81,7 +81,7 @@ TEST(JointSceneFiles, NewtonsCradlePassesTheFirstBallsMomentumToTheLast) {
   // row passes the momentum on), at 10 and 4 iterations.
   const SceneDesc scene = loadReferenceScene("newtons_cradle.json");
   for (const int iterations : {10, 4}) {
-    WorldSettings s = worldSettingsFor(scene);
+    WorldSettings s = scene.settings.world;
     s.iterations = iterations;
     World w(s);
     std::string error;

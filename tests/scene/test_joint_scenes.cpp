@@ -60,7 +60,7 @@ TEST(JointScenes, EveryTypeParsesAndBuilds) {
   EXPECT_NEAR(s.joints[6].params.swingLimit, kPi / 3.0f, 1e-6f);
   EXPECT_TRUE(s.joints[6].params.collideConnected);
 
-  World w(worldSettingsFor(s));
+  World w(s.settings.world);
   std::string error;
   ASSERT_TRUE(buildWorld(s, w, error)) << error;
   ASSERT_EQ(w.jointCount(), 7u);

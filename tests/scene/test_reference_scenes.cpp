@@ -9,10 +9,10 @@ namespace {
 Vec3 f3(double x, double y, double z) { return Vec3(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)); }
 
 void expectCommonSettings(const SceneDesc& s) {
-  EXPECT_NEAR(s.settings.dt, 1.0 / 60.0, 1e-9);
-  EXPECT_EQ(s.settings.gravity, Vec3(0.0f, -9.81f, 0.0f));
-  EXPECT_EQ(s.settings.iterations, 10);
-  EXPECT_FALSE(s.settings.sleeping);
+  EXPECT_NEAR(s.settings.world.dt, 1.0 / 60.0, 1e-9);
+  EXPECT_EQ(s.settings.world.gravity, Vec3(0.0f, -9.81f, 0.0f));
+  EXPECT_EQ(s.settings.world.iterations, 10);
+  EXPECT_FALSE(s.settings.world.sleeping);
   EXPECT_FLOAT_EQ(s.materials[0].friction, 0.6f);
   // The reference ground: one static box, half (500, 1, 500) at y = -1.
   ASSERT_EQ(countMotion(s, MotionType::Static), 1);

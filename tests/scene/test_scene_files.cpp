@@ -78,10 +78,10 @@ TEST(SceneFiles, DefaultsAreApplied) {
   const SceneDesc s = parseOk(R"({"bodies": [{"shape": {"type": "sphere"}}]})");
   EXPECT_EQ(s.name, "test");  // file stem
   EXPECT_EQ(s.sourcePath, "mem/test.json");
-  EXPECT_FLOAT_EQ(s.settings.dt, 1.0f / 60.0f);
-  EXPECT_FLOAT_EQ(s.settings.gravity.y(), -9.81f);
-  EXPECT_EQ(s.settings.iterations, 10);
-  EXPECT_FALSE(s.settings.sleeping);
+  EXPECT_FLOAT_EQ(s.settings.world.dt, 1.0f / 60.0f);
+  EXPECT_FLOAT_EQ(s.settings.world.gravity.y(), -9.81f);
+  EXPECT_EQ(s.settings.world.iterations, 10);
+  EXPECT_FALSE(s.settings.world.sleeping);
   ASSERT_EQ(s.materials.size(), 1u);
   EXPECT_EQ(s.materials[0].name, "default");
   EXPECT_FLOAT_EQ(s.materials[0].friction, 0.6f);
@@ -117,16 +117,16 @@ TEST(SceneFiles, KeysAreReadIntoTheDescription) {
     "water": [{"min": [-1, -1, -1], "max": [1, 0, 1], "density": 1020, "linear_drag": 2, "angular_drag": 1}]
   })");
   EXPECT_EQ(s.name, "custom");
-  EXPECT_FLOAT_EQ(s.settings.dt, 0.01f);
-  EXPECT_TRUE(s.settings.gravity.isApprox(Vec3(0, -3, 0)));
-  EXPECT_EQ(s.settings.iterations, 7);
-  EXPECT_FLOAT_EQ(s.settings.omega, 1.3f);
-  EXPECT_TRUE(s.settings.sleeping);
-  EXPECT_FALSE(s.settings.chainSolve);
-  EXPECT_FALSE(s.settings.reuseManifolds);
-  EXPECT_FLOAT_EQ(s.settings.momentumLayers, 4.0f);
-  EXPECT_FLOAT_EQ(worldSettingsFor(s).momentumLayers, 4.0f);  // and on to the world
-  EXPECT_FLOAT_EQ(worldSettingsFor(s).restDamping, 0.02f);
+  EXPECT_FLOAT_EQ(s.settings.world.dt, 0.01f);
+  EXPECT_TRUE(s.settings.world.gravity.isApprox(Vec3(0, -3, 0)));
+  EXPECT_EQ(s.settings.world.iterations, 7);
+  EXPECT_FLOAT_EQ(s.settings.world.omega, 1.3f);
+  EXPECT_TRUE(s.settings.world.sleeping);
+  EXPECT_FALSE(s.settings.world.chainSolve);
+  EXPECT_FALSE(s.settings.world.reuseManifolds);
+  EXPECT_FLOAT_EQ(s.settings.world.momentumLayers, 4.0f);
+  EXPECT_FLOAT_EQ(s.settings.world.momentumLayers, 4.0f);  // and on to the world
+  EXPECT_FLOAT_EQ(s.settings.world.restDamping, 0.02f);
   EXPECT_EQ(s.settings.frames, 50);
   ASSERT_EQ(s.materials.size(), 2u);
   EXPECT_FLOAT_EQ(s.materials[0].friction, 0.9f);  // "default" redefined

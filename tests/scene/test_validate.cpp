@@ -36,23 +36,23 @@ TEST(ValidateScene, AcceptsAValidScene) {
 
 TEST(ValidateScene, RejectsEachBrokenInvariant) {
   SceneDesc s = validScene();
-  s.settings.dt = 0.0f;
+  s.settings.world.dt = 0.0f;
   EXPECT_EQ(issueOf(s), "settings.dt: must be > 0 (got 0)");
 
   s = validScene();
-  s.settings.omega = 2.0f;
+  s.settings.world.omega = 2.0f;
   EXPECT_EQ(issueOf(s), "settings.omega: must be in [1, 2) (got 2)");
 
   s = validScene();
-  s.settings.momentumLayers = -1.0f;
+  s.settings.world.momentumLayers = -1.0f;
   EXPECT_EQ(issueOf(s), "settings.momentum_layers: must be >= 0 (got -1)");
 
   s = validScene();
-  s.settings.restDamping = -0.5f;
+  s.settings.world.restDamping = -0.5f;
   EXPECT_EQ(issueOf(s), "settings.rest_damping: must be >= 0 (got -0.5)");
 
   s = validScene();
-  s.settings.iterations = 0;
+  s.settings.world.iterations = 0;
   EXPECT_EQ(issueOf(s), "settings.iterations: must be >= 1 (got 0)");
 
   s = validScene();
