@@ -104,7 +104,7 @@ float World::waterLift() const {
 
 void World::boundSpeeds() {
   std::atomic<uint32_t> slowed{0};
-  parallelFor(bodyCount(), 8192, [&](uint32_t b, uint32_t e) {
+  parallelFor(bodyCount(), kBodyGrain, [&](uint32_t b, uint32_t e) {
     if (const uint32_t k = speedBound_.apply(bodies_, b, e)) slowed += k;
   });
   stats_.speedLimited += slowed.load();
@@ -126,8 +126,7 @@ void World::step() {
   // 1. External forces (what they may add to any body's speed is noted first: the speed bound).
   speedBound_.settings = settings_.speedBound;
   speedBound_.update(bodies_, settings_.gravity, dt, waterLift(), staticFloor_);
-  // A few operations a body: tasks of 8192 bodies, or the step pays more in task overhead than it saves.
-  parallelFor(n, 8192, [&](uint32_t b, uint32_t e) { integrateVelocities(bodies_, b, e, settings_.gravity, dt); });
+  parallelFor(n, kBodyGrain, [&](uint32_t b, uint32_t e) { integrateVelocities(bodies_, b, e, settings_.gravity, dt); });
   if (!water_.empty()) {
     stats_.stages |= kStageBuoyancy;
     for (const WaterVolume& w : water_) applyBuoyancy(bodies_, volume_, bounds_, w, settings_.gravity, dt);
@@ -183,7 +182,7 @@ void World::step() {
   const auto t2 = Clock::now();
   boundSpeeds();
   const float restSpeed = restDampingSpeed(settings_.restDamping, settings_.gravity, dt);
-  parallelFor(n, 512, [&](uint32_t b, uint32_t e) {
+  parallelFor(n, kPoseGrain, [&](uint32_t b, uint32_t e) {
     dampRestingMotion(bodies_, islandOfBody_.data(), islands_, restSpeed, b, e);
     integratePositions(bodies_, b, e, dt, settings_.sleepLinear, settings_.sleepAngular);
   });

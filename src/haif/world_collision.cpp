@@ -22,7 +22,7 @@ void World::updateBroadPhase() {
   const float dt = settings_.dt;
   // Tight boxes (kept for buoyancy, metrics and the narrow phase's quick reject), then each swept
   // by this step's motion so fast bodies find their pairs before they pass through them.
-  parallelFor(n, 1024, [&](uint32_t begin, uint32_t end) {
+  parallelFor(n, kBoundsGrain, [&](uint32_t begin, uint32_t end) {
     for (uint32_t i = begin; i < end; ++i)
       if (bodies_.kind[i] != BodyKind::Static && !bodies_.asleep[i]) bounds_[i] = computeAabb(shapes_[i], bodies_.xf[i]);
   });
@@ -136,7 +136,7 @@ void World::narrowPhase() {
   ManifoldReuseLimits reuseLimits;
   reuseLimits.margin = settings_.contactMargin;
   const float restingClosing = reuseLimits.slide + settings_.gravity.norm() * settings_.dt * settings_.dt;
-  parallelFor(n, 64, [&](uint32_t begin, uint32_t end) {
+  parallelFor(n, kPairGrain, [&](uint32_t begin, uint32_t end) {
     for (uint32_t ci = begin; ci < end; ++ci) {
       Contact& c = contacts_[ci];
       wakeFlag_[ci] = 0;

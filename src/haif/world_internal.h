@@ -34,11 +34,38 @@ inline double msSince(Clock::time_point t0) {
 /// so thousands of tiny islands do not each pay a task's overhead.
 constexpr uint32_t kBatchRows = 1024;
 
+// Task grains of the parallel loops: the fewest items a task takes, sized so each task runs for
+// tens of microseconds (a TBB task costs about a microsecond to hand out).
+/// Per-body passes of a few operations each (integrate velocities, the speed bound).
+constexpr uint32_t kBodyGrain = 8192;
+/// Per-body passes that also move the pose (rest damping, integrate positions): ~10x the work.
+constexpr uint32_t kPoseGrain = 512;
+/// Tight boxes: one per moving body, a hull's or compound's box costs hundreds of nanoseconds.
+constexpr uint32_t kBoundsGrain = 1024;
+/// Narrow-phase pairs cost 0.1 to 10 microseconds each, very unevenly: small tasks balance them.
+constexpr uint32_t kPairGrain = 64;
+/// Contacts prepared in one chunk (row building, a few hundred nanoseconds each).
+constexpr uint32_t kPrepareChunk = 256;
+/// Contacts in one chunk of the light per-contact passes (re-aiming for relax, storing impulses).
+constexpr uint32_t kContactChunk = 1024;
+/// Contact heights for the solve order: a few loads each.
+constexpr uint32_t kHeightGrain = 4096;
+/// Islands in one task of the per-island passes (sorting, cold start): islands vary in size.
+constexpr uint32_t kIslandGrain = 4;
+
 }  // namespace world_detail
 
 using world_detail::Clock;
 using world_detail::msSince;
 using world_detail::kBatchRows;
+using world_detail::kBodyGrain;
+using world_detail::kBoundsGrain;
+using world_detail::kContactChunk;
+using world_detail::kHeightGrain;
+using world_detail::kIslandGrain;
+using world_detail::kPairGrain;
+using world_detail::kPoseGrain;
+using world_detail::kPrepareChunk;
 
 template <class F>
 void World::parallelFor(uint32_t n, uint32_t grain, F&& f) {

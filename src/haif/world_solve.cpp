@@ -89,7 +89,7 @@ void World::solveIslands(int iterations) {
     const Island& isl = islands_.islands[k];
     ContactConstraint* cs = constraints_.data() + isl.firstContact;
     const uint32_t* ids = islands_.contacts.data() + isl.firstContact;
-    forEachContactChunk(k, 256, [&](uint32_t begin, uint32_t end) {
+    forEachContactChunk(k, kPrepareChunk, [&](uint32_t begin, uint32_t end) {
       for (uint32_t j = begin; j < end; ++j) {
         // Contacts are visited in solve order, scattered through memory: the one a few ahead is
         // fetched while this one is prepared (the waits were a fifth of prepare in many_pyramids).
@@ -218,7 +218,7 @@ void World::relaxIslands(int relaxIterations) {
     if (relaxIterations > 0 && !isChain_[k] && !isWide(k) && islands_.islands[k].jointCount == 0) {
       const Island& isl = islands_.islands[k];
       ContactConstraint* cs = constraints_.data() + isl.firstContact;
-      forEachContactChunk(k, 1024, [&](uint32_t b, uint32_t e) {
+      forEachContactChunk(k, kContactChunk, [&](uint32_t b, uint32_t e) {
         for (uint32_t j = b; j < e; ++j) reaimForRelax(bodies_, contacts_[cs[j].contact], sp, cs[j]);
       });
     }
@@ -234,7 +234,7 @@ void World::relaxIslands(int relaxIterations) {
         return SweepResult{};
       });
     }
-    forEachContactChunk(k, 1024, [&](uint32_t b, uint32_t e) { storeImpulses(cs + b, e - b, contacts_.data()); });
+    forEachContactChunk(k, kContactChunk, [&](uint32_t b, uint32_t e) { storeImpulses(cs + b, e - b, contacts_.data()); });
     if (isl.jointCount > 0) finishJoints(k);
     if (isl.contactCount + isl.jointCount > 0) islandIterations_[k] += relaxIterations;
   };

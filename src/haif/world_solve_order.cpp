@@ -21,7 +21,7 @@ void World::orderContactsTopDown() {
   contactHeight_.resize(contacts_.size());
   orderKeys_.resize(islands_.contacts.size());
   const uint32_t* ids = islands_.contacts.data();
-  parallelFor(uint32_t(islands_.contacts.size()), 4096, [&](uint32_t begin, uint32_t end) {
+  parallelFor(uint32_t(islands_.contacts.size()), kHeightGrain, [&](uint32_t begin, uint32_t end) {
     for (uint32_t j = begin; j < end; ++j) {
       const ContactEdge& c = contactEdges_[ids[j]];
       float h = up.dot(bodies_.xf[c.a].p + bodies_.xf[c.b].p);
@@ -37,7 +37,7 @@ void World::orderContactsTopDown() {
   });
   // Islands own disjoint ranges: sorted concurrently; a giant island is sorted in parallel itself.
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
-  parallelFor(m, 4, [&](uint32_t begin, uint32_t end) {
+  parallelFor(m, kIslandGrain, [&](uint32_t begin, uint32_t end) {
     for (uint32_t k = begin; k < end; ++k) {
       const Island& isl = islands_.islands[k];
       uint64_t* first = orderKeys_.data() + isl.firstContact;
@@ -83,7 +83,7 @@ void World::estimateColdImpulses() {
   };
   // Islands share no dynamic body (a static lower body receives nothing): they run concurrently.
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
-  parallelFor(m, 4, [&](uint32_t begin, uint32_t end) {
+  parallelFor(m, kIslandGrain, [&](uint32_t begin, uint32_t end) {
     for (uint32_t k = begin; k < end; ++k) {
       const Island& isl = islands_.islands[k];
       const uint32_t* bodies = islands_.bodies.data() + isl.firstBody;
