@@ -7,7 +7,9 @@ void BroadPhase::addBody(uint32_t body, const Aabb& tight, bool isStatic) {
     proxy_.resize(body + 1, DynamicTree::kNull);
     isStatic_.resize(body + 1, 0);
     movedFlag_.resize(body + 1, 0);
+    previousFat_.resize(body + 1);
   }
+  previousFat_[body] = Aabb{};  // new: it overlapped nothing before
   isStatic_[body] = isStatic ? 1 : 0;
   // Static boxes need no margin: they never move.
   proxy_[body] = isStatic ? staticTree_.createProxy(tight, body)
@@ -18,6 +20,7 @@ void BroadPhase::addBody(uint32_t body, const Aabb& tight, bool isStatic) {
 bool BroadPhase::update(uint32_t body, const Aabb& tight) {
   const int32_t p = proxy_[body];
   if (movingTree_.fatAabb(p).contains(tight)) return false;
+  if (!movedFlag_[body]) previousFat_[body] = movingTree_.fatAabb(p);
   movingTree_.moveProxy(p, tight.expanded(fatMargin));
   markMoved(body);
   return true;
