@@ -227,6 +227,35 @@ TEST(BulletWorld, PrincipalFrameReadsBackAsTheScenePose) {
   EXPECT_GT(w.angularVelocity(0).norm(), 0.5f);
 }
 
+TEST(BulletWorld, AnAsymmetricCompoundRestsOnItsPartsWhereHaifPutsIt) {
+  // An L of a long bar and a heavy block at one end, tilted: Bullet gets a btCompoundShape in the
+  // principal frame (the tensor is not diagonal), its pose reads back as HAIF's, and it comes to
+  // rest lying on both parts with its centre of mass at the height the parts give it.
+  SceneDesc s = emptyScene();
+  s.bodies.push_back(groundBox());
+  BodyDesc l;
+  l.where = "bodies[l]";
+  l.shape.type = ShapeType::Compound;
+  CompoundPartDesc bar, block;
+  bar.shape.type = ShapeType::Box;
+  bar.shape.halfExtents = Vec3(0.6f, 0.1f, 0.1f);
+  block.shape.type = ShapeType::Box;
+  block.shape.halfExtents = Vec3(0.1f, 0.1f, 0.3f);
+  block.position = Vec3(0.7f, 0.0f, 0.2f);
+  l.shape.parts = {bar, block};
+  l.position = Vec3(0.0f, 0.6f, 0.0f);
+  l.orientation = Quat(Eigen::AngleAxisf(0.2f, Vec3(1, 0, 1).normalized()));
+  s.bodies.push_back(l);
+  BulletWorld w;
+  build(w, s);
+  EXPECT_LT(w.pose(1).q.angularDistance(l.orientation), 1e-5f);
+  steps(w, 240);
+  // Both parts are 0.1 high at the centre: lying flat, the centre of mass sits 0.1 m up.
+  EXPECT_NEAR(w.pose(1).p.y(), 0.1f, 0.02f);
+  EXPECT_LT(std::abs((w.pose(1).q * Vec3::UnitY()).dot(Vec3::UnitY()) - 1.0f), 1e-3f) << "not lying flat";
+  EXPECT_LT(w.linearVelocity(1).norm(), 0.05f);
+}
+
 TEST(BulletWorld, WaterIsRefusedWithAClearError) {
   SceneDesc s = emptyScene();
   s.bodies.push_back(box(Vec3(0.0f, 1.0f, 0.0f)));
