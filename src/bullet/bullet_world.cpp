@@ -90,11 +90,11 @@ bool BulletWorld::build(const SceneDesc& scene, int iterations, std::string& err
   m.world.setGravity(toBt(ws.gravity));
   btContactSolverInfo& info = m.world.getSolverInfo();
   info.m_numIterations = m.iterations;
-  info.m_sor = ws.omega;
-  info.m_erp = ws.beta;   // Baumgarte factor of non-contact rows
-  info.m_erp2 = ws.beta;  // and of contact rows
-  info.m_linearSlop = ws.slop;
-  info.m_restitutionVelocityThreshold = ws.restitutionThreshold;
+  info.m_sor = ws.contact.omega;
+  info.m_erp = ws.contact.beta;   // Baumgarte factor of non-contact rows
+  info.m_erp2 = ws.contact.beta;  // and of contact rows
+  info.m_linearSlop = ws.contact.slop;
+  info.m_restitutionVelocityThreshold = ws.contact.restitutionThreshold;
   // Two friction rows per point, as HAIF has (Bullet's default is one, along the sliding direction).
   info.m_solverMode |= SOLVER_USE_2_FRICTION_DIRECTIONS;
   gCalculateCombinedRestitutionCallback = &maxRestitution;

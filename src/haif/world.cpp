@@ -147,7 +147,7 @@ void World::step() {
   }
   islandBuilder_.build(bodies_, contactEdges_.data(), uint32_t(contactEdges_.size()), joints_, islands_);
   if (settings_.topDownOrder) orderContactsTopDown();
-  if (settings_.coldStartFromWeight && settings_.warmStart && settings_.topDownOrder) estimateColdImpulses();
+  if (settings_.coldStartFromWeight && settings_.contact.warmStart && settings_.topDownOrder) estimateColdImpulses();
   splitGiantIslands();
   batchLanes();
   std::fill(islandOfBody_.begin(), islandOfBody_.end(), -1);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/math.h"
+#include "dynamics/contact_solver.h"
 #include "dynamics/joint_solver.h"
 #include "haif/speed_bound.h"
 
@@ -12,14 +13,10 @@ struct WorldSettings {
   float dt = 1.0f / 60.0f;
   Vec3 gravity = Vec3(0.0f, -9.81f, 0.0f);
   int iterations = 10;              ///< used by the default (fixed) controller
-  float omega = 1.0f;               ///< SOR relaxation in [1, 2)
-  float beta = 0.2f;                ///< Baumgarte factor
-  float slop = 0.005f;              ///< penetration allowed before correction (m)
-  float restitutionThreshold = 1.0f;///< m/s
+  /// How contacts are solved: SOR factor ω, Baumgarte β, slop, restitution threshold, warm starting,
+  /// push-out cap, friction anchors (dynamics/contact_solver.h). Its dt is not read: the World's is.
+  SolverParams contact;
   float contactMargin = 0.02f;      ///< speculative distance (m) beyond which points are not reported
-  bool warmStart = true;
-  float maxPushVelocity = 0.2f;     ///< cap on the Baumgarte push-out speed (m/s)
-  bool frictionAnchors = true;      ///< friction pulls back the drift of sticking contacts (dynamics/contact_solver.h)
   bool topDownOrder = true;         ///< solve the highest contacts of an island first
   bool accelerate = true;           ///< conjugate-gradient momentum between sweeps (contact_solver.h)
   /// Momentum only for islands at least this many layers of bodies deep (World::supportLayers): it

@@ -13,15 +13,8 @@ constexpr float kMomentumFloor = 1e-5f;
 }  // namespace
 
 SolverParams World::solverParams() const {
-  SolverParams sp;
+  SolverParams sp = settings_.contact;
   sp.dt = settings_.dt;
-  sp.omega = settings_.omega;
-  sp.beta = settings_.beta;
-  sp.slop = settings_.slop;
-  sp.restitutionThreshold = settings_.restitutionThreshold;
-  sp.warmStart = settings_.warmStart;
-  sp.maxPushVelocity = settings_.maxPushVelocity;
-  sp.frictionAnchors = settings_.frictionAnchors;
   return sp;
 }
 
@@ -51,7 +44,7 @@ float World::supportLayers(uint32_t k) const {
 SweepResult World::sweepIsland(uint32_t k, bool useBias, bool restartDirection, bool measureChange) {
   const Island& isl = islands_.islands[k];
   ContactConstraint* cs = constraints_.data() + isl.firstContact;
-  const float omega = settings_.omega;
+  const float omega = settings_.contact.omega;
   SweepResult r;
   if (isChain_[k]) {
     r = solveChainIteration(bodies_, cs, chainLinks_.data() + isl.firstContact, isl.contactCount, omega, useBias);

@@ -60,15 +60,15 @@ void parseSettings(const JsonNode& node, SimSettings& settings) {
   s.iterations = optInt(node, "iterations", s.iterations, 1, 100000);
   const JsonNode omega = node.member("omega");
   if (omega.present()) {
-    s.omega = readFloat(omega);
-    if (!(s.omega >= 1.0f && s.omega < 2.0f)) fail(omega, "must be in [1, 2) (got " + formatNumber(s.omega) + ")");
+    s.contact.omega = readFloat(omega);
+    if (!(s.contact.omega >= 1.0f && s.contact.omega < 2.0f)) fail(omega, "must be in [1, 2) (got " + formatNumber(s.contact.omega) + ")");
   }
   const JsonNode beta = node.member("beta");
   if (beta.present()) {
-    s.beta = readFloat(beta);
-    if (!(s.beta >= 0.0f && s.beta <= 1.0f)) fail(beta, "must be in [0, 1] (got " + formatNumber(s.beta) + ")");
+    s.contact.beta = readFloat(beta);
+    if (!(s.contact.beta >= 0.0f && s.contact.beta <= 1.0f)) fail(beta, "must be in [0, 1] (got " + formatNumber(s.contact.beta) + ")");
   }
-  s.slop = optNonNegative(node, "slop", s.slop);
+  s.contact.slop = optNonNegative(node, "slop", s.contact.slop);
   if (node.member("sleeping").present()) s.sleeping = readBool(node.member("sleeping"));
   if (node.member("accelerate").present()) s.accelerate = readBool(node.member("accelerate"));
   s.momentumLayers = optNonNegative(node, "momentum_layers", s.momentumLayers);

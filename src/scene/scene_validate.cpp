@@ -322,12 +322,12 @@ bool validateScene(const SceneDesc& scene, SceneIssue& issue) {
   if (!c.positive("settings.dt", s.dt)) return false;
   if (!c.finiteVec("settings.gravity", s.gravity)) return false;
   if (s.iterations < 1) return c.bad("settings.iterations", "must be >= 1 (got " + std::to_string(s.iterations) + ")");
-  if (!c.isFiniteNum("settings.omega", s.omega)) return false;
-  if (!(s.omega >= 1.0f && s.omega < 2.0f)) return c.bad("settings.omega", "must be in [1, 2) (got " + formatNumber(s.omega) + ")");
-  if (!c.nonNegative("settings.beta", s.beta) || !c.nonNegative("settings.slop", s.slop) ||
+  if (!c.isFiniteNum("settings.omega", s.contact.omega)) return false;
+  if (!(s.contact.omega >= 1.0f && s.contact.omega < 2.0f)) return c.bad("settings.omega", "must be in [1, 2) (got " + formatNumber(s.contact.omega) + ")");
+  if (!c.nonNegative("settings.beta", s.contact.beta) || !c.nonNegative("settings.slop", s.contact.slop) ||
       !c.nonNegative("settings.momentum_layers", s.momentumLayers))
     return false;
-  if (s.beta > 1.0f) return c.bad("settings.beta", "must be in [0, 1] (got " + formatNumber(s.beta) + ")");
+  if (s.contact.beta > 1.0f) return c.bad("settings.beta", "must be in [0, 1] (got " + formatNumber(s.contact.beta) + ")");
   if (!c.nonNegative("settings.rest_damping", s.restDamping)) return false;
   if (s.restDamping > 1.0f)
     return c.bad("settings.rest_damping", "must be in [0, 1] (got " + formatNumber(s.restDamping) + "; 0 turns it off)");

@@ -50,12 +50,12 @@ TEST(CompoundBodies, DumbbellComesToRestOnBothBalls) {
     if (s > 120) deepest = std::max(deepest, maxContactDepth(w));
   }
   const BodyStore& bs = w.bodies();
-  EXPECT_NEAR(bs.xf[b].p.y(), r, w.settings().slop + 1e-3f);
+  EXPECT_NEAR(bs.xf[b].p.y(), r, w.settings().contact.slop + 1e-3f);
   const Vec3 bar = bs.xf[b].q * Vec3::UnitX();
   EXPECT_LT(std::abs(bar.y()), 2e-3f) << "the bar is not level: both balls must touch";
   EXPECT_LT(bs.v[b].norm(), 1e-2f);
   EXPECT_LT(bs.w[b].norm(), 2e-2f);
-  EXPECT_LT(deepest, w.settings().slop + 1e-3f);
+  EXPECT_LT(deepest, w.settings().contact.slop + 1e-3f);
   EXPECT_EQ(w.lastStats().contactPoints, 2u);
 }
 
@@ -74,7 +74,7 @@ TEST(CompoundBodies, TableStandsOnItsFourLegs) {
     moved = std::max(moved, (w.bodies().xf[t].p - start).norm());
     tilt = std::max(tilt, tiltOf(w.bodies().xf[t].q));
   }
-  EXPECT_LT(moved, w.settings().slop + 1e-3f);
+  EXPECT_LT(moved, w.settings().contact.slop + 1e-3f);
   EXPECT_LT(tilt, 1e-3f);
   EXPECT_EQ(w.lastStats().contactPoints, 4u) << "one point under each leg";
 }

@@ -24,7 +24,7 @@ TEST(Resting, BoxOnGroundDoesNotDriftOrSink) {
     deepest = std::max(deepest, maxContactDepth(w));
     farthest = std::max(farthest, (w.bodies().xf[box].p - start).norm());
   }
-  const float slop = w.settings().slop;
+  const float slop = w.settings().contact.slop;
   EXPECT_LT(farthest, 1e-3f) << "box drifted " << farthest << " m over 10 s";
   EXPECT_LT(deepest, slop + 1e-3f) << "penetration " << deepest << " m (slop " << slop << ")";
   // It must still be touching: a box floating above the ground would also "not penetrate".

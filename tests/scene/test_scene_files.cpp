@@ -120,7 +120,7 @@ TEST(SceneFiles, KeysAreReadIntoTheDescription) {
   EXPECT_FLOAT_EQ(s.settings.world.dt, 0.01f);
   EXPECT_TRUE(s.settings.world.gravity.isApprox(Vec3(0, -3, 0)));
   EXPECT_EQ(s.settings.world.iterations, 7);
-  EXPECT_FLOAT_EQ(s.settings.world.omega, 1.3f);
+  EXPECT_FLOAT_EQ(s.settings.world.contact.omega, 1.3f);
   EXPECT_TRUE(s.settings.world.sleeping);
   EXPECT_FALSE(s.settings.world.chainSolve);
   EXPECT_FALSE(s.settings.world.reuseManifolds);

@@ -40,7 +40,7 @@ TEST(ValidateScene, RejectsEachBrokenInvariant) {
   EXPECT_EQ(issueOf(s), "settings.dt: must be > 0 (got 0)");
 
   s = validScene();
-  s.settings.world.omega = 2.0f;
+  s.settings.world.contact.omega = 2.0f;
   EXPECT_EQ(issueOf(s), "settings.omega: must be in [1, 2) (got 2)");
 
   s = validScene();

@@ -17,7 +17,7 @@ float maxDropAfter(const std::string& scene, int steps, bool frictionAnchors, fl
   EXPECT_TRUE(makeSimulation(std::string(HAIF_SOURCE_DIR) + "/scenes/" + scene, SolverSpec{}, 2, sim, error)) << error;
   if (!sim.world) return 1e30f;
   World& w = *sim.world;
-  w.settings().frictionAnchors = frictionAnchors;
+  w.settings().contact.frictionAnchors = frictionAnchors;
   w.settings().restDamping = restDamping;
   const std::vector<Transform> start = w.bodies().xf;
   for (int i = 0; i < steps; ++i) w.step();
