@@ -1,6 +1,7 @@
 #include "app/reel_playlist.h"
 
 #include "app/simulated_scene.h"
+#include "scene/json_document.h"
 #include "scene/json_positions.h"
 #include "scene/json_reader.h"
 #include "scene/scene_loader.h"
@@ -16,15 +17,6 @@ namespace {
 void checkSpec(const JsonNode& node, const std::string& spec) {
   std::string why;
   if (!checkSimulationSpec(spec, why)) fail(node, why);
-}
-
-// nlohmann's message without its "[json.exception...] parse error at line L, column C: " prefix.
-std::string syntaxMessage(const std::string& what) {
-  const size_t column = what.find("column ");
-  const size_t colon = column == std::string::npos ? std::string::npos : what.find(": ", column);
-  if (colon != std::string::npos) return what.substr(colon + 2);
-  const size_t bracket = what.find("] ");
-  return bracket == std::string::npos ? what : what.substr(bracket + 2);
 }
 
 std::string viewOf(const JsonNode& item) {
@@ -111,25 +103,9 @@ bool parseReelPlaylistText(const std::string& text, const std::string& path, Ree
     const TextLocation loc = locationOfOffset(text, offset);
     return path + ":" + std::to_string(loc.line) + ":" + std::to_string(loc.column) + ": ";
   };
-  const size_t deep = findTooDeepNesting(text);
-  if (deep != std::string::npos) {
-    error = at(deep) + "syntax error: nested deeper than " + std::to_string(kMaxJsonDepth) + " levels of [ and {";
-    return false;
-  }
   Json doc;
-  try {
-    doc = Json::parse(text);
-  } catch (const Json::exception& e) {
-    const auto* pe = dynamic_cast<const Json::parse_error*>(&e);
-    error = at(pe && pe->byte > 0 ? pe->byte - 1 : 0) + "syntax error: " + syntaxMessage(e.what());
-    return false;
-  }
   JsonPositions positions;
-  std::string duplicate;
-  if (!positions.scan(text, duplicate)) {
-    error = at(positions.keyOffset(duplicate)) + "duplicate key at " + duplicate;
-    return false;
-  }
+  if (!parseJsonDocument(text, path, doc, positions, error)) return false;
   ReelPlaylist p;
   p.path = path;
   JsonNode root;

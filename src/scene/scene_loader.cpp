@@ -3,6 +3,7 @@
 #include "scene/body_parse.h"
 #include "scene/generator_parse.h"
 #include "scene/joint_parse.h"
+#include "scene/json_document.h"
 #include "scene/json_positions.h"
 #include "scene/json_reader.h"
 #include "scene/scene_validate.h"
@@ -35,18 +36,6 @@ std::string formatLocation(const std::string& path, const std::string& text, siz
 std::string formatError(const std::string& path, const std::string& text, size_t offset, const std::string& place,
                         const std::string& message) {
   return formatLocation(path, text, offset) + ": " + place + ": " + message;
-}
-
-// nlohmann's message without its "[json.exception...] parse error at line L, column C: " prefix:
-// we print our own position.
-std::string syntaxMessage(const std::string& what) {
-  const size_t col = what.find("column ");
-  if (col != std::string::npos) {
-    const size_t colon = what.find(": ", col);
-    if (colon != std::string::npos) return what.substr(colon + 2);
-  }
-  const size_t bracket = what.find("] ");
-  return bracket == std::string::npos ? what : what.substr(bracket + 2);
 }
 
 void parseSettings(const JsonNode& node, SimSettings& settings) {
@@ -213,12 +202,12 @@ bool parseSceneText(const std::string& text, const std::string& pathForMessages,
     doc = Json::parse(text);
   } catch (const Json::parse_error& e) {
     const size_t offset = e.byte > 0 ? e.byte - 1 : 0;
-    error = formatError(pathForMessages, text, offset, "syntax error", syntaxMessage(e.what()));
+    error = formatError(pathForMessages, text, offset, "syntax error", jsonSyntaxMessage(e.what()));
     return false;
   } catch (const Json::exception& e) {  // number overflow (out_of_range.406) carries no position
     const size_t at = findOverflowingNumber(text);
     error = formatError(pathForMessages, text, at == std::string::npos ? 0 : at, "syntax error",
-                        at == std::string::npos ? syntaxMessage(e.what())
+                        at == std::string::npos ? jsonSyntaxMessage(e.what())
                                                 : "number out of range (too large for a 64-bit float)");
     return false;
   }
@@ -234,8 +223,7 @@ bool parseSceneText(const std::string& text, const std::string& pathForMessages,
 
   SceneDesc scene;
   scene.sourcePath = pathForMessages;
-  scene.sourceHash = 0xcbf29ce484222325ull;  // FNV-1a, 64 bits
-  for (const char c : text) scene.sourceHash = (scene.sourceHash ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
+  scene.sourceHash = fnv1aHash(text);
   scene.name = stemOf(pathForMessages);
   ParseContext ctx;
   ctx.sceneDir = directoryOf(pathForMessages);

@@ -1,5 +1,6 @@
 #include "tools/suite_spec.h"
 
+#include "scene/json_document.h"
 #include "scene/json_positions.h"
 #include "scene/json_reader.h"
 #include "scene/scene_loader.h"
@@ -58,15 +59,6 @@ std::string stemOf(const std::string& path) { return fs::path(path).stem().strin
 std::string resolve(const std::string& baseDir, const std::string& given) {
   const fs::path p(given);
   return p.is_absolute() || baseDir.empty() ? p.string() : (fs::path(baseDir) / p).string();
-}
-
-// nlohmann's message without its "[json.exception...] parse error at line L, column C: " prefix.
-std::string syntaxMessage(const std::string& what) {
-  const size_t column = what.find("column ");
-  const size_t colon = column == std::string::npos ? std::string::npos : what.find(": ", column);
-  if (colon != std::string::npos) return what.substr(colon + 2);
-  const size_t bracket = what.find("] ");
-  return bracket == std::string::npos ? what : what.substr(bracket + 2);
 }
 
 // Reads the suite; the scenes it names are loaded once each.
@@ -304,31 +296,13 @@ bool parseSuiteText(const std::string& text, const std::string& path, const Suit
     const TextLocation loc = locationOfOffset(text, offset);
     return path + ":" + std::to_string(loc.line) + ":" + std::to_string(loc.column) + ": ";
   };
-  const size_t deep = findTooDeepNesting(text);
-  if (deep != std::string::npos) {
-    error = at(deep) + "syntax error: nested deeper than " + std::to_string(kMaxJsonDepth) + " levels of [ and {";
-    return false;
-  }
   Json doc;
-  try {
-    doc = Json::parse(text);
-  } catch (const Json::exception& e) {
-    const auto* pe = dynamic_cast<const Json::parse_error*>(&e);
-    error = at(pe && pe->byte > 0 ? pe->byte - 1 : 0) + "syntax error: " + syntaxMessage(e.what());
-    return false;
-  }
   JsonPositions positions;
-  std::string duplicate;
-  if (!positions.scan(text, duplicate)) {
-    error = at(positions.keyOffset(duplicate)) + "duplicate key at " + duplicate;
-    return false;
-  }
+  if (!parseJsonDocument(text, path, doc, positions, error)) return false;
   SuiteSpec spec;
   spec.path = path;
   spec.name = stemOf(path);
-  uint64_t hash = 0xcbf29ce484222325ull;  // FNV-1a, 64 bits, as scene files are hashed
-  for (const char c : text) hash = (hash ^ static_cast<unsigned char>(c)) * 0x100000001b3ull;
-  spec.hash = hashText(hash);
+  spec.hash = hashText(fnv1aHash(text));  // as scene files are hashed
   JsonNode root;
   root.value = &doc;
   try {
