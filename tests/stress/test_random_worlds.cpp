@@ -116,48 +116,39 @@ TEST(RandomWorlds, NeverNaNExplodeOrGainEnergy) {
   EXPECT_EQ(failures, 0) << "of " << kWorlds << " random worlds";
 }
 
-TEST(RandomWorlds, MixedWorldsWithJointsAndMoversNeverNaNOrExplode) {
-  // Joints (chains, rings, loops, pins; many of them unsatisfiable once bodies collide) and kinematic
-  // paddles, at fixed 10 iterations and at counts drawn from [4, 64] every step: 500 runs.
-  constexpr uint32_t kFirstMixedSeed = 5000;
-  constexpr int kMixedWorlds = 125;
+// Runs `worlds` seeds from `firstSeed`, each with every kind in `kinds`, at fixed 10 iterations and at
+// counts drawn from [4, 64] every step; reports each failing run and returns how many failed.
+int runWorldVariants(const char* label, uint32_t firstSeed, int worlds, std::initializer_list<RandomWorldKinds> kinds) {
   int failures = 0;
-  for (int k = 0; k < kMixedWorlds; ++k) {
-    const uint32_t seed = kFirstMixedSeed + uint32_t(k);
-    for (const RandomWorldKinds kinds : {RandomWorldKinds{true, false}, RandomWorldKinds{true, true}})
+  for (int k = 0; k < worlds; ++k) {
+    const uint32_t seed = firstSeed + uint32_t(k);
+    for (const RandomWorldKinds kind : kinds)
       for (const bool drawn : {false, true}) {
-        const std::string problem = runRandomWorld(seed, kinds, drawn);
+        const std::string problem = runRandomWorld(seed, kind, drawn);
         if (!problem.empty()) {
           ++failures;
-          ADD_FAILURE() << "mixed world seed " << seed << (kinds.kinematic ? " with a paddle" : "")
+          ADD_FAILURE() << label << " world seed " << seed << (kind.kinematic ? " with a paddle" : "")
                         << (drawn ? ", drawn iterations" : ", fixed 10") << ": " << problem;
         }
       }
   }
+  return failures;
+}
+
+TEST(RandomWorlds, MixedWorldsWithJointsAndMoversNeverNaNOrExplode) {
+  // Joints (chains, rings, loops, pins; many of them unsatisfiable once bodies collide) and kinematic
+  // paddles, at fixed 10 iterations and at counts drawn from [4, 64] every step: 500 runs.
+  constexpr int kMixedWorlds = 125;
+  const int failures = runWorldVariants("mixed", 5000, kMixedWorlds, {RandomWorldKinds{true, false}, RandomWorldKinds{true, true}});
   EXPECT_EQ(failures, 0) << "of " << 4 * kMixedWorlds << " mixed runs";
 }
 
 TEST(RandomWorlds, WorldsWithCompoundsNeverNaNOrExplode) {
   // Compound bodies of 2 to 4 parts among the others, with and without a kinematic paddle, at fixed
   // 10 iterations and at counts drawn from [4, 64]: 240 runs.
-  constexpr uint32_t kFirstCompoundSeed = 9000;
   constexpr int kCompoundWorlds = 60;
-  int failures = 0;
-  for (int k = 0; k < kCompoundWorlds; ++k) {
-    const uint32_t seed = kFirstCompoundSeed + uint32_t(k);
-    for (const bool paddle : {false, true})
-      for (const bool drawn : {false, true}) {
-        RandomWorldKinds kinds;
-        kinds.kinematic = paddle;
-        kinds.compounds = true;
-        const std::string problem = runRandomWorld(seed, kinds, drawn);
-        if (!problem.empty()) {
-          ++failures;
-          ADD_FAILURE() << "compound world seed " << seed << (paddle ? " with a paddle" : "")
-                        << (drawn ? ", drawn iterations" : ", fixed 10") << ": " << problem;
-        }
-      }
-  }
+  const int failures =
+      runWorldVariants("compound", 9000, kCompoundWorlds, {RandomWorldKinds{false, false, true}, RandomWorldKinds{false, true, true}});
   EXPECT_EQ(failures, 0) << "of " << 4 * kCompoundWorlds << " compound runs";
 }
 
