@@ -68,7 +68,6 @@ bool FrameBuilder::registerGeometry(const Shape& s, render::Renderer& renderer, 
 
 bool FrameBuilder::registerMeshes(const World& world, const SceneDesc& scene, render::Renderer& renderer,
                                   std::string& error) {
-  meshOfBody_.assign(world.bodyCount(), 0);
   renderMeshOfBody_.assign(world.bodyCount(), 0);
   drawnParts_.assign(world.bodyCount(), {});
   for (uint32_t i = 0; i < world.bodyCount(); ++i) {
@@ -89,27 +88,23 @@ bool FrameBuilder::registerMeshes(const World& world, const SceneDesc& scene, re
         return false;
       }
       ++renderMeshes_;
-      meshOfBody_[i] = id;
-      renderMeshOfBody_[i] = 1;
+      renderMeshOfBody_[i] = id;
       continue;
     }
     bool registered = true;
     if (s.type == ShapeType::Compound) {
-      drawnParts_[i].clear();
-      for (uint32_t k = 0; k < uint32_t(s.compound->parts.size()); ++k)
+      for (uint32_t k = 0; k < uint32_t(s.compound->parts.size()); ++k) {
         if (i >= scene.bodies.size() || k >= scene.bodies[i].shape.parts.size() || scene.bodies[i].shape.parts[k].draw)
           drawnParts_[i].push_back(k);
-    }
-    if (s.type == ShapeType::Compound)
-      for (const CompoundShape::Part& part : s.compound->parts) registered = registered && registerGeometry(part.shape, renderer, error);
-    else
+        registered = registered && registerGeometry(s.compound->parts[k].shape, renderer, error);
+      }
+    } else {
       registered = registerGeometry(s, renderer, error);
+    }
     if (!registered) {
       error = "body " + std::to_string(i) + ": " + error;
       return false;
     }
-    const void* key = geometryKey(s);
-    if (key) meshOfBody_[i] = meshIds_.at(key);
   }
   return true;
 }
@@ -166,7 +161,7 @@ void FrameBuilder::build(const World& world, const CameraDesc& camera, render::F
     in.heat = std::min(1.0f, b.v[i].norm() / 5.0f);
     if (i < renderMeshOfBody_.size() && renderMeshOfBody_[i]) {
       in.kind = render::ShapeKind::TriangleMesh;
-      in.meshId = meshOfBody_[i];
+      in.meshId = renderMeshOfBody_[i];
       setPose(xf.p, xf.q, in);
       continue;
     }
@@ -178,14 +173,15 @@ void FrameBuilder::build(const World& world, const CameraDesc& camera, render::F
     // the body's own slot holds its first drawn part, or an empty box when it draws none.
     const render::Instance body = in;
     const auto& parts = s.compound->parts;
-    const bool listed = i < drawnParts_.size() && !drawnParts_[i].empty();
-    const size_t drawn = listed ? drawnParts_[i].size() : (i < drawnParts_.size() ? 0 : parts.size());
+    // Without registerMeshes (no scene) every part is drawn.
+    const std::vector<uint32_t>* listed = i < drawnParts_.size() ? &drawnParts_[i] : nullptr;
+    const size_t drawn = listed ? listed->size() : parts.size();
     if (drawn == 0) {
       setPose(xf.p, xf.q, in);
       in.halfExtents[0] = in.halfExtents[1] = in.halfExtents[2] = 0.0f;
     }
     for (size_t k = 0; k < drawn; ++k) {
-      const CompoundShape::Part& part = parts[listed ? drawnParts_[i][k] : k];
+      const CompoundShape::Part& part = parts[listed ? (*listed)[k] : k];
       render::Instance& pi = k == 0 ? frame.instances[i] : frame.instances.emplace_back(body);
       placeShape(part.shape, Transform{xf.apply(part.local.p), xf.q * part.local.q}, pi);
     }

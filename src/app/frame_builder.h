@@ -34,8 +34,7 @@ class FrameBuilder {
   static void setPose(const Vec3& p, const Quat& q, render::Instance& in);
 
   std::map<const void*, uint32_t> meshIds_;  // geometry pointer -> render mesh id
-  std::vector<uint32_t> meshOfBody_;
-  std::vector<uint8_t> renderMeshOfBody_;  // 1: meshOfBody_ is the scene's render mesh
+  std::vector<uint32_t> renderMeshOfBody_;  // the scene's render mesh drawn for a body (0: its shape)
   std::vector<std::vector<uint32_t>> drawnParts_;  // per compound body: the parts the scene draws
   uint32_t renderMeshes_ = 0;
 };
