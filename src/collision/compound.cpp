@@ -37,6 +37,7 @@ std::shared_ptr<CompoundShape> buildCompound(const std::vector<Shape>& shapes, c
     volume += v;
     moment += double(v) * local.p.cast<double>();
     c->parts.push_back(CompoundShape::Part{s, local, Aabb{}});
+    c->roundParts |= s.type == ShapeType::Sphere || s.type == ShapeType::Capsule;
   }
   if (!(volume > 0.0)) return refuse("the parts have no volume");
   const Eigen::Vector3d centre = moment / volume;

@@ -21,6 +21,7 @@ struct CompoundShape {
   Vec3 centroid = Vec3::Zero();           ///< centre of mass in the input frame (parts are shifted by -centroid)
   float volume = 0.0f;
   Mat3 inertiaPerDensity = Mat3::Zero();  ///< about the centre of mass, for density 1
+  bool roundParts = false;                ///< some part is a sphere or capsule (it can roll)
 };
 
 /// The most parts one compound may have (a part index is mixed into 16 bits of a contact's feature id).

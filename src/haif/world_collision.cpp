@@ -111,11 +111,7 @@ inline void updateAnchor(Contact& c, const Transform& xa, const Transform& xb) {
 }
 
 bool rolls(const Shape& s) {
-  if (s.type == ShapeType::Compound) {
-    for (const CompoundShape::Part& p : s.compound->parts)
-      if (rolls(p.shape)) return true;
-    return false;
-  }
+  if (s.type == ShapeType::Compound) return s.compound->roundParts;
   return s.type == ShapeType::Sphere || s.type == ShapeType::Capsule;
 }
 
