@@ -6,6 +6,10 @@ bool compoundPartType(ShapeType t) {
   return t == ShapeType::Sphere || t == ShapeType::Box || t == ShapeType::Capsule || t == ShapeType::ConvexHull;
 }
 
+std::string notAPartMessage(ShapeType t) {
+  return std::string("a compound's part cannot be a ") + shapeTypeName(t) + "; use sphere, box, capsule or hull";
+}
+
 std::shared_ptr<CompoundShape> buildCompound(const std::vector<Shape>& shapes, const std::vector<Transform>& poses,
                                              std::string* error) {
   auto refuse = [&](const std::string& why) {

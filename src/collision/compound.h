@@ -29,6 +29,8 @@ inline constexpr size_t kMaxCompoundParts = 4096;
 
 /// Whether `t` can be a part of a compound: convex shapes with a volume (no meshes, planes, compounds).
 bool compoundPartType(ShapeType t);
+/// What a scene file is told when a part is of type `t` that cannot be one.
+std::string notAPartMessage(ShapeType t);
 
 /// Builds a compound from parts at poses in the body's input frame. A hull part's own re-centring
 /// (ConvexHull::centroid) is folded into its pose, so a hull part sits where its points say.

@@ -207,8 +207,7 @@ ShapeDesc parseShape(const JsonNode& node, MotionType motion, const ParseContext
         // Parsed as a static body's shape so a mesh or plane part reaches the message below.
         p.shape = parseShape(shape, MotionType::Static, ctx);
         if (!compoundPartType(p.shape.type))
-          fail(shape.member("type"), std::string("a compound's part cannot be a ") + shapeTypeName(p.shape.type) +
-                                         "; use sphere, box, capsule or hull");
+          fail(shape.member("type"), notAPartMessage(p.shape.type));
         const JsonNode position = part.member("position"), orientation = part.member("orientation");
         if (position.present()) p.position = readVec3(position);
         if (orientation.present()) p.orientation = parseOrientation(orientation);

@@ -167,6 +167,11 @@ struct Checker {
   bool finiteVec(const std::string& field, const Vec3& v) {
     return isFinite(v) || bad(field, "must be finite (got [" + formatNumber(v.x()) + ", " + formatNumber(v.y()) + ", " + formatNumber(v.z()) + "])");
   }
+  bool unitQuat(const std::string& field, const Quat& q) {
+    const float n = q.norm();
+    return (std::isfinite(n) && std::fabs(n - 1.0f) <= 1e-3f) ||
+           bad(field, "must be a unit quaternion (norm " + formatNumber(n) + ")");
+  }
   bool positiveVec(const std::string& field, const Vec3& v) {
     if (!finiteVec(field, v)) return false;
     return (v.array() > 0.0f).all() ||
@@ -212,12 +217,9 @@ bool checkShape(Checker& c, const ShapeDesc& s, MotionType motion) {
         const CompoundPartDesc& p = s.parts[i];
         const std::string at = "shape.parts[" + std::to_string(i) + "]";
         if (!compoundPartType(p.shape.type))
-          return c.bad(at + ".shape.type", std::string("a compound's part cannot be a ") + shapeTypeName(p.shape.type) +
-                                               "; use sphere, box, capsule or hull");
+          return c.bad(at + ".shape.type", notAPartMessage(p.shape.type));
         if (!c.finiteVec(at + ".position", p.position)) return false;
-        const float qn = p.orientation.norm();
-        if (!std::isfinite(qn) || std::fabs(qn - 1.0f) > 1e-3f)
-          return c.bad(at + ".orientation", "must be a unit quaternion (norm " + formatNumber(qn) + ")");
+        if (!c.unitQuat(at + ".orientation", p.orientation)) return false;
         if (!checkShape(c, p.shape, MotionType::Static)) {
           c.issue.field = at + "." + c.issue.field;  // the part's own check names "shape.radius" etc.
           return false;
@@ -243,9 +245,7 @@ bool checkBody(Checker& c, const SceneDesc& scene, const BodyDesc& b) {
     return c.bad("angular_velocity", "a spin of " + formatNumber(spin) +
                                          " rad/s is outside the spins the engine supports (up to " +
                                          formatNumber(kMaxBodySpin) + " rad/s)");
-  const float qn = b.orientation.norm();
-  if (!std::isfinite(qn) || std::fabs(qn - 1.0f) > 1e-3f)
-    return c.bad("orientation", "must be a unit quaternion (norm " + formatNumber(qn) + ")");
+  if (!c.unitQuat("orientation", b.orientation)) return false;
   if (b.material >= scene.materials.size())
     return c.bad("material", "material index " + std::to_string(b.material) + " is out of range");
   if (!c.nonNegative("damping.linear", b.linearDamping) || !c.nonNegative("damping.angular", b.angularDamping)) return false;
