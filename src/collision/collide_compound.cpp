@@ -79,6 +79,18 @@ int selectPoints(const GroupedBuffer& in, ContactCandidate* out, uint32_t* outGr
 }
 
 void add(GroupedBuffer& buf, const ContactPoint& p, uint32_t id, uint32_t group) {
+  // Overlapping parts (the boxes of a drum meet with some overlap) report one touch twice: keep the
+  // deeper, so the duplicate does not take one of the manifold's four places.
+  for (int i = 0; i < buf.count; ++i) {
+    ContactCandidate& c = buf.pts[i];
+    if ((c.position - p.position).squaredNorm() < 1e-8f && c.normal.dot(p.normal) > 0.999f) {
+      if (p.depth > c.depth) {
+        c = ContactCandidate{p.position, p.normal, p.depth, id};
+        buf.group[i] = group;
+      }
+      return;
+    }
+  }
   if (buf.count == GroupedBuffer::kCapacity) {
     ContactCandidate keep[kMaxManifoldPoints];
     uint32_t keepGroup[kMaxManifoldPoints];

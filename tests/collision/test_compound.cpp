@@ -133,6 +133,20 @@ TEST(CompoundCollide, TableKeepsAPointUnderEveryLeg) {
   for (int k = 0; k < 4; ++k) EXPECT_TRUE(under[k]) << "no point under leg " << k;
 }
 
+// Two floor slabs that overlap (as a drum's wall boxes do at their seams) under a small box standing
+// in the overlap: each slab reports the box's corners, and the manifold keeps each corner once.
+TEST(CompoundCollide, OverlappingPartsDoNotReportATouchTwice) {
+  auto floor = compound({Shape::box(Vec3(1.0f, 0.1f, 1.0f)), Shape::box(Vec3(1.0f, 0.1f, 1.0f))},
+                        {xf(Vec3(-0.9f, 0, 0)), xf(Vec3(0.9f, 0, 0))});
+  Manifold m;
+  const int n = collideBoth(Shape::compoundOf(floor), xf(Vec3::Zero()), Shape::box(Vec3(0.05f, 0.05f, 0.05f)),
+                            xf(Vec3(0.0f, 0.149f, 0.0f)), 0.02f, m);
+  ASSERT_EQ(n, 4);
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j)
+      EXPECT_GT((m.points[i].position - m.points[j].position).norm(), 0.05f) << "points " << i << " and " << j;
+}
+
 // Parts whose bounds miss the other shape are skipped, and only the touching part reports points.
 TEST(CompoundCollide, OnlyTouchingPartsReport) {
   auto bar = compound({Shape::sphere(0.5f), Shape::box(Vec3(1.5f, 0.1f, 0.1f)), Shape::sphere(0.5f)},
