@@ -26,6 +26,7 @@ struct ContactEdge {
   bool unloaded = true;   ///< every point's normal impulse is zero (nothing to warm start from)
   /// Overlapping, between an awake dynamic body and a static or kinematic one (haif/pinch.h).
   bool pressedByImmovable = false;
+  bool overlapping = false;  ///< some point is deeper than zero (crushes pass along these: haif/pinch.h)
 };
 
 struct IslandSet {

@@ -32,12 +32,81 @@ uint32_t PinchDetector::mark(const BodyStore& bodies, const ContactEdge* edges, 
     }
   }
   for (const Candidate& k : candidates_) contacts[k.contact].pinched = notes_[k.note].pinched;
-  uint32_t pinched = 0;
+  uint32_t pinched = candidates_.empty() ? 0u : markCrushes(bodies, edges, contacts);
   for (const Note& note : notes_) {
     pinched += note.pinched ? 1u : 0u;
     noteOfBody_[note.body] = -1;
   }
   return pinched;
+}
+
+uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* edges, std::vector<Contact>& contacts) {
+  if (pressureOfBody_.size() < bodies.size()) pressureOfBody_.resize(bodies.size(), -1);
+  pressures_.clear();
+  auto press = [&](uint32_t body, const Vec3& into, uint32_t source, uint32_t via, uint32_t from) {
+    pressureOfBody_[body] = int32_t(pressures_.size());
+    pressures_.push_back(Pressure{body, into, source, int32_t(via), from});
+  };
+  // The dynamic body of an immovable contact, the direction it is pushed in, and the other body.
+  struct Side {
+    uint32_t dyn, other;
+    Vec3 into;
+  };
+  auto sideOf = [&](uint32_t ci) {
+    const ContactEdge& e = edges[ci];
+    const bool da = bodies.isAwakeDynamic(e.a);
+    const Vec3& n = contacts[ci].manifold.points[0].normal;  // from A into B
+    return Side{da ? e.a : e.b, da ? e.b : e.a, da ? Vec3(-n) : n};
+  };
+  const uint32_t n = static_cast<uint32_t>(contacts.size());
+  // Seeds: a kinematic body moving without turning into the dynamic body it overlaps. A turning one
+  // (a sweeper bar, a drum) is left to the single-body rule: passing a turning bar's pressure along
+  // its rows threw 767 bodies against the speed bound in one step of a swept pit (docs/solver.md).
+  for (const Candidate& k : candidates_) {
+    const Side s = sideOf(k.contact);
+    if (bodies.kind[s.other] != BodyKind::Kinematic || pressureOfBody_[s.dyn] >= 0) continue;
+    if (bodies.w[s.other].squaredNorm() == 0.0f && bodies.v[s.other].dot(s.into) > 0.0f)
+      press(s.dyn, s.into, s.other, k.contact, s.other);
+  }
+  if (pressures_.empty()) return 0;
+  // Passed on, in contact order (the same on any thread count), to the bodies ahead.
+  for (int pass = 0; pass < kCrushPasses; ++pass) {
+    bool grew = false;
+    for (uint32_t ci = 0; ci < n; ++ci) {
+      const ContactEdge& e = edges[ci];
+      if (!e.overlapping || !bodies.isAwakeDynamic(e.a) || !bodies.isAwakeDynamic(e.b)) continue;
+      const int32_t pa = pressureOfBody_[e.a], pb = pressureOfBody_[e.b];
+      if ((pa < 0) == (pb < 0)) continue;
+      const Vec3& ab = contacts[ci].manifold.points[0].normal;
+      if (pa >= 0 && ab.dot(pressures_[pa].into) >= kAhead) {
+        press(e.b, ab, pressures_[pa].source, ci, e.a);
+        grew = true;
+      } else if (pb >= 0 && -ab.dot(pressures_[pb].into) >= kAhead) {
+        press(e.a, -ab, pressures_[pb].source, ci, e.b);
+        grew = true;
+      }
+    }
+    if (!grew) break;
+  }
+  // Ends: a pressed body that another immovable body pushes back. (The kinematic body the pressure
+  // comes from does not close a crush of its own: a turning drum presses a pile from every side and
+  // carries it along.)
+  uint32_t crushed = 0;
+  for (const Candidate& k : candidates_) {
+    const Side s = sideOf(k.contact);
+    const int32_t first = pressureOfBody_[s.dyn];
+    if (first < 0 || s.other == pressures_[first].source || s.into.dot(pressures_[first].into) >= kOpposed) continue;
+    contacts[k.contact].pinched = true;
+    for (int32_t at = first; at >= 0 && !pressures_[at].crushed;) {
+      Pressure& q = pressures_[at];
+      q.crushed = true;
+      contacts[uint32_t(q.via)].pinched = true;
+      if (noteOfBody_[q.body] < 0 || !notes_[noteOfBody_[q.body]].pinched) ++crushed;
+      at = q.from == q.source ? -1 : pressureOfBody_[q.from];
+    }
+  }
+  for (const Pressure& q : pressures_) pressureOfBody_[q.body] = -1;
+  return crushed;
 }
 
 }  // namespace haif

@@ -8,6 +8,15 @@
 // Such contacts are marked (Contact::pinched) and solved without push-out and without impulses
 // carried between steps, and the static side is solved last, so the body stays out of the static
 // world and the kinematic body passes it instead.
+//
+// A crush is the same conflict passed along a row of bodies: a kinematic blade driving a pile into a
+// wall presses the first body into the second and so on to the one against the wall. Each body is
+// pressed from one side only, yet the row's impulses grow step after step just the same (a 2 m/s
+// blade meeting a wall threw 7435 bodies against the speed bound in 1200 steps). The pressure of a
+// kinematic body moving (without turning) into a dynamic one is passed on through overlapping contacts whose normal
+// points the same way (within 60 degrees); a pressed body that touches another immovable body
+// pushing it back (more than 120 degrees away) closes a crush, and every contact of its row, back to
+// the kinematic body, is marked pinched.
 #pragma once
 
 #include "core/body_store.h"
@@ -31,7 +40,16 @@ class PinchDetector {
   /// result does not depend on threads. Returns the number of pinched bodies.
   uint32_t mark(const BodyStore& bodies, const ContactEdge* edges, std::vector<Contact>& contacts);
 
+  /// A kinematic body's pressure passes to a body ahead when their normal is within 60 degrees of it.
+  static constexpr float kAhead = 0.5f;
+  /// Passes over the contacts that carry pressure along rows: each reaches at least one body further
+  /// (more where the contact order follows the row); a wider pile is not crushed as a whole.
+  static constexpr int kCrushPasses = 8;
+
  private:
+  // The crushes (header comment): returns the bodies found crushed that were not pinched already.
+  uint32_t markCrushes(const BodyStore& bodies, const ContactEdge* edges, std::vector<Contact>& contacts);
+
   struct Note {
     uint32_t body;
     Vec3 n1, n2;  // the first two unlike normals pointing into the body
@@ -44,6 +62,18 @@ class PinchDetector {
     uint32_t note;     // its dynamic body's Note
   };
   std::vector<Candidate> candidates_;
+
+  struct Pressure {
+    uint32_t body = 0;
+    Vec3 into = Vec3::Zero();  // the direction the body is pushed
+    uint32_t source = 0;       // the kinematic body the pressure comes from
+    int32_t via = -1;          // the contact it came through
+    uint32_t from = 0;         // the body on that contact's other side (== source at the first)
+    bool crushed = false;      // its row has been marked
+  };
+  std::vector<int32_t> pressureOfBody_;  // per body: its Pressure this step, or -1
+  std::vector<Pressure> pressures_;
+  std::vector<uint32_t> crushEnds_;      // immovable contacts that close a crush
 };
 
 }  // namespace haif
