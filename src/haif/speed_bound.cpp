@@ -39,6 +39,8 @@ void SpeedBound::update(const BodyStore& bodies, const Vec3& gravity, float dt, 
     }
   }
   forceAllowance_ += pushed;
+  up_ = up;
+  floor_ = std::isfinite(floor) ? floor : -1e30f;
   const float lowest = std::isfinite(floor) ? std::max(lowest_, floor) : lowest_;
   const float fall = std::max(0.0f, highestStart_ - lowest);
   const float freeFall = std::sqrt(2.0f * g * (1.0f + waterLift) * fall);
@@ -51,7 +53,7 @@ uint32_t SpeedBound::apply(BodyStore& bodies, uint32_t begin, uint32_t end) cons
   if (settings.factor <= 0.0f) return 0;
   uint32_t slowed = 0;
   for (uint32_t i = begin; i < end; ++i) {
-    if (!bodies.isAwakeDynamic(i)) continue;
+    if (!bodies.isAwakeDynamic(i) || up_.dot(bodies.xf[i].p) + reach_[i] < floor_) continue;
     const float speed = bodies.v[i].norm() + bodies.w[i].norm() * reach_[i];
     if (speed <= limit_) continue;  // false for NaN too
     if (std::isfinite(speed)) {

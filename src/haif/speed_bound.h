@@ -38,7 +38,8 @@ class SpeedBound {
   /// the fall term stops there instead of growing with it.
   void update(const BodyStore& bodies, const Vec3& gravity, float dt, float waterLift, float floor);
   /// Slows every awake dynamic body in [begin, end) whose surface speed is over the bound; returns
-  /// how many it slowed. Thread-safe over disjoint ranges.
+  /// how many it slowed. A body wholly below the floor has left the scene and is let fall (slowing
+  /// it protects nothing, and counting it hid real acts). Thread-safe over disjoint ranges.
   uint32_t apply(BodyStore& bodies, uint32_t begin, uint32_t end) const;
   /// Tracks the lowest dynamic body (for the free-fall term); call after positions moved.
   void noteLowest(const BodyStore& bodies, const Vec3& up);
@@ -54,6 +55,8 @@ class SpeedBound {
   float fastestStart_ = 0.0f, highestStart_ = -1e30f, lowest_ = 1e30f;
   float forceAllowance_ = 0.0f;  // m/s of speed user forces have given at most, summed over steps
   float limit_ = 1e30f;
+  Vec3 up_ = Vec3::UnitY();
+  float floor_ = -1e30f;  // the static floor along up_ (-1e30: none)
 };
 
 }  // namespace haif
