@@ -59,14 +59,13 @@ uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* 
     return Side{da ? e.a : e.b, da ? e.b : e.a, da ? Vec3(-n) : n};
   };
   const uint32_t n = static_cast<uint32_t>(contacts.size());
-  // Seeds: a kinematic body moving without turning into the dynamic body it overlaps. A turning one
-  // (a sweeper bar, a drum) is left to the single-body rule: passing a turning bar's pressure along
-  // its rows threw 767 bodies against the speed bound in one step of a swept pit (docs/solver.md).
+  // Seeds: a kinematic body whose surface, where it overlaps a dynamic body, moves into it.
   for (const Candidate& k : candidates_) {
     const Side s = sideOf(k.contact);
     if (bodies.kind[s.other] != BodyKind::Kinematic || pressureOfBody_[s.dyn] >= 0) continue;
-    if (bodies.w[s.other].squaredNorm() == 0.0f && bodies.v[s.other].dot(s.into) > 0.0f)
-      press(s.dyn, s.into, s.other, k.contact, s.other);
+    const Vec3 at = contacts[k.contact].manifold.points[0].position;
+    const Vec3 surface = bodies.v[s.other] + bodies.w[s.other].cross(at - bodies.xf[s.other].p);
+    if (surface.dot(s.into) > 0.0f) press(s.dyn, s.into, s.other, k.contact, s.other);
   }
   if (pressures_.empty()) return 0;
   // Passed on, in contact order (the same on any thread count), to the bodies ahead.

@@ -13,7 +13,7 @@
 // wall presses the first body into the second and so on to the one against the wall. Each body is
 // pressed from one side only, yet the row's impulses grow step after step just the same (a 2 m/s
 // blade meeting a wall threw 7435 bodies against the speed bound in 1200 steps). The pressure of a
-// kinematic body moving (without turning) into a dynamic one is passed on through overlapping contacts whose normal
+// kinematic body moving into a dynamic one is passed on through overlapping contacts whose normal
 // points the same way (within 60 degrees); a pressed body that touches another immovable body
 // pushing it back (more than 120 degrees away) closes a crush, and every contact of its row, back to
 // the kinematic body, is marked pinched.

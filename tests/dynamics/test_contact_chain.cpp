@@ -106,6 +106,21 @@ TEST(ContactChain, ABoxOnTwoBoxesIsNot) {
   EXPECT_FALSE(s.prepare(links));
 }
 
+TEST(ContactChain, AColumnHeldAtBothEndsIsNot) {
+  // Two boxes between the ground and a static ceiling: the exact solve of rows pushing from both
+  // ends along one line is singular (a hull a swept pit's bar had run over took 2e8 N s in one step).
+  Pile s = column(2, 0.0f);
+  const uint32_t ceiling = s.bodies.add(BodyKind::Static, Transform{}, 0.0f, Mat3::Zero());
+  s.touch(2, ceiling, 0.0f, 2.0f);
+  for (ContactPoint& p : s.contacts.back().manifold.points) p.normal = -Vec3::UnitY();  // into the top box
+  std::swap(s.contacts.back().a, s.contacts.back().b);
+  std::rotate(s.contacts.begin(), s.contacts.end() - 1, s.contacts.end());  // top down: ceiling first
+  std::vector<ChainLink> links;
+  EXPECT_FALSE(s.prepare(links));
+  s.contacts.erase(s.contacts.begin());  // without the ceiling it is a chain again
+  EXPECT_TRUE(s.prepare(links));
+}
+
 TEST(ContactChain, OneSweepStopsALandingOnAStack) {
   Pile s = column(5, -2.0f);
   std::vector<ChainLink> links;
