@@ -8,6 +8,7 @@
 #include "tools/atomic_file.h"
 #include "tools/bench_plots.h"
 #include "tools/bench_report.h"
+#include "tools/bench_scaling.h"
 #include "tools/bench_sweep.h"
 #include "tools/interrupts.h"
 #include "tools/staged_output.h"
@@ -83,19 +84,69 @@ bool samePoint(const BenchPoint& a, const BenchPoint& b) {
          a.spec.solver.iterations == b.spec.solver.iterations && a.spec.solver.budgetMs == b.spec.solver.budgetMs;
 }
 
+// --scaling: the stacks and pile families at each size, smallest first; DIR/scaling.csv,
+// DIR/report.md and DIR/scaling.png.
+int benchScaling(const std::vector<double>& sizes, int steps, int threads, const std::string& outDir) {
+  std::string error;
+  const std::vector<std::string> markers = {"scaling.csv", "report.md"};
+  if (!checkOutputFolder(outDir, markers, error)) {
+    std::fprintf(stderr, "haif bench: %s\n", error.c_str());
+    return 1;
+  }
+  std::vector<ScalingResult> rows;
+  for (const std::string family : {"stacks", "pile"}) {
+    for (double n : sizes) {
+      ScalingResult r;
+      if (!runScalingPoint(family, int(n), steps, threads, r, error)) {
+        waitIfInterrupted();
+        std::fprintf(stderr, "%s\n", error.c_str());
+        return 1;
+      }
+      std::printf("%-7s %7d bodies  %2d thr  %9.3f ms/step (p95 %9.3f)  world %8.1f MB%s\n", r.family.c_str(),
+                  r.bodies, r.threads, r.msMedian, r.msP95, r.worldMb, r.nan ? "  NaN!" : "");
+      std::fflush(stdout);
+      rows.push_back(r);
+    }
+  }
+  StagedFolder output;
+  std::string plot;
+  if (!output.open(outDir, markers, error) || !writeScalingPlot(output.path(), rows, plot, error) ||
+      !writeFileAtomic(output.path() + "/scaling.csv", scalingCsv(rows), error) ||
+      !writeFileAtomic(output.path() + "/report.md", scalingMarkdown(rows, plot), error) || !output.commit(error)) {
+    waitIfInterrupted();
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return 1;
+  }
+  std::printf("wrote %s/scaling.csv, %s/report.md%s\n", outDir.c_str(), outDir.c_str(),
+              plot.empty() ? "" : (" and " + outDir + "/" + plot).c_str());
+  return 0;
+}
+
 }  // namespace
 
 int commandBench(int argc, char** argv) {
   CommandLine cl("bench",
                  {"--scenes", "--engines", "--steps", "--budget-ms", "--threads", "--out", "--error-every",
-                  "--iterations", "--budgets", "--repeat"},
-                 {"--quick"});
+                  "--iterations", "--budgets", "--repeat", "--sizes"},
+                 {"--quick", "--scaling"});
   std::string error;
   if (!cl.parse(argc, argv, 2, error)) {
     std::fprintf(stderr, "%s\n", error.c_str());
     return 2;
   }
   const bool isQuick = cl.has("--quick");
+  if (cl.has("--scaling")) {
+    int steps = isQuick ? 20 : 60, threads = int(tbb::info::default_concurrency());
+    std::vector<double> sizes;
+    if (!cl.getInt("--steps", 1, 1000000, steps, error) || !cl.getInt("--threads", 1, 1024, threads, error) ||
+        !parseNumbers("--sizes", cl.get("--sizes", isQuick ? "1000,3000,10000" : "1000,3000,10000,30000,100000"), 10,
+                      2000000, true, sizes, error)) {
+      std::fprintf(stderr, "%s\n", error.c_str());
+      return 2;
+    }
+    std::sort(sizes.begin(), sizes.end());
+    return benchScaling(sizes, steps, threads, cl.get("--out", "output/bench"));
+  }
   // --quick: fewer scenes, steps and sweep points, to finish in a few minutes on a small machine.
   int steps = isQuick ? 120 : 300, threads = int(tbb::info::default_concurrency()), errorEvery = 0, rounds = 1;
   double seedBudget = 4.0;

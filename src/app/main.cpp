@@ -25,6 +25,8 @@ const char* const kUsage =
       "                  [--scenes a,b,..] [--engines haif,bullet] [--quick] [--steps N] [--threads T]\n"
       "                  [--iterations 1,2,..] [--budgets 1,2,..] [--budget-ms B] [--error-every K]\n"
       "                  [--repeat R] [--out DIR]\n"
+      "                  --scaling: ms/step and memory against bodies (stacks and piles, 10^3 to 10^5),\n"
+      "                  the fitted exponents; scaling.csv, report.md, scaling.png [--sizes N,..] [--steps N]\n"
       "  calibrate       measure this machine's cost model [--out FILE] [--threads T]\n"
       "  compare SCENE   two solver set-ups of one scene side by side in one video\n"
       "                  --left SPEC --right SPEC  (SPEC: fixed:N, adaptive:MS, model:MS, replay:STATS.csv,\n"

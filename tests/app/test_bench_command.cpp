@@ -241,3 +241,38 @@ TEST_F(BenchCommand, BadListsAndMissingScenes) {
 }
 
 }  // namespace
+
+TEST_F(BenchCommand, ScalingWritesEveryWorldTheExponentsAndThePlot) {
+  const fs::path out = dir_ / "scaling";
+  const Result r = haif("bench --scaling --sizes 300,100 --steps 3 --threads 2 --out '" + out.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::stringstream lines(readFile(out / "scaling.csv"));
+  std::string header;
+  ASSERT_TRUE(std::getline(lines, header));
+  EXPECT_EQ(header, "family,bodies,threads,steps,ms_per_step_median,ms_per_step_p95,world_mb,nan");
+  std::vector<std::string> worlds;
+  for (std::string line; std::getline(lines, line);) {
+    const std::vector<std::string> row = split(line);
+    ASSERT_EQ(row.size(), 8u) << line;
+    worlds.push_back(row[0] + " " + row[1]);
+    EXPECT_EQ(row[3], "3");
+    EXPECT_GT(std::stod(row[4]), 0.0) << line;
+    EXPECT_GT(std::stod(row[6]), 0.0) << line;
+  }
+  EXPECT_EQ(worlds, (std::vector<std::string>{"stacks 100", "stacks 300", "pile 100", "pile 300"})) << "smallest first";
+  const std::string report = readFile(out / "report.md");
+  EXPECT_NE(report.find("| stacks | "), std::string::npos) << report;
+  EXPECT_NE(report.find("exponent of ms/step"), std::string::npos) << report;
+#ifdef HAIF_HAVE_RENDER
+  EXPECT_TRUE(fs::exists(out / "scaling.png"));
+#endif
+}
+
+TEST_F(BenchCommand, ScalingRefusesABadSizeList) {
+  const fs::path out = dir_ / "scaling";
+  const Result r = haif("bench --scaling --sizes 100,abc --out '" + out.string() + "'");
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.err.find("--sizes: 'abc' is not an integer"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one clear error, got: " << r.err;
+  EXPECT_FALSE(fs::exists(out / "scaling.csv"));
+}
