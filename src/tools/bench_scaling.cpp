@@ -25,9 +25,11 @@ namespace {
 // Heap memory in use (MB): what the allocator has handed out and not had back, mapped blocks
 // included. Read before a world is built and after its last step, the difference is what it holds
 // (the process's resident size would not do: freed memory of the last world is reused, not returned).
+// NaN where the allocator does not keep these counts (a sanitizer's replaces malloc: all zero).
 double heapInUseMb() {
   const struct mallinfo2 m = mallinfo2();
-  return double(m.uordblks + m.hblkhd) / (1024.0 * 1024.0);
+  const size_t bytes = m.uordblks + m.hblkhd;
+  return bytes > 0 ? double(bytes) / (1024.0 * 1024.0) : NAN;
 }
 
 // The random pile's cell edge is 2.2 x its largest size (0.4 m): ten layers of cells over a square.
@@ -86,7 +88,8 @@ bool runScalingPoint(const std::string& family, int bodies, int steps, int threa
     }
     r.msMedian = quantile(ms, 0.5);
     r.msP95 = quantile(ms, 0.95);
-    r.worldMb = std::max(0.0, heapInUseMb() - before);
+    const double after = heapInUseMb();
+    r.worldMb = std::isnan(before) || std::isnan(after) ? NAN : std::max(0.0, after - before);
   }
   out = r;
   return true;
@@ -157,8 +160,10 @@ std::string scalingMarkdown(const std::vector<ScalingResult>& rows, const std::s
   s << "| family | bodies | threads | steps | ms/step (median) | ms/step (p95) | world MB |\n|---|---|---|---|---|---|---|\n";
   char line[256];
   for (const ScalingResult& r : rows) {
-    std::snprintf(line, sizeof line, "| %s | %d | %d | %d | %.3f | %.3f | %.1f |%s\n", r.family.c_str(), r.bodies,
-                  r.threads, r.steps, r.msMedian, r.msP95, r.worldMb, r.nan ? " NaN" : "");
+    char mb[32] = "n/a";
+    if (!std::isnan(r.worldMb)) std::snprintf(mb, sizeof mb, "%.1f", r.worldMb);
+    std::snprintf(line, sizeof line, "| %s | %d | %d | %d | %.3f | %.3f | %s |%s\n", r.family.c_str(), r.bodies,
+                  r.threads, r.steps, r.msMedian, r.msP95, mb, r.nan ? " NaN" : "");
     s << line;
   }
   s << "\n| family | exponent of ms/step | exponent of world MB |\n|---|---|---|\n";

@@ -16,7 +16,7 @@ struct ScalingResult {
   int steps = 0;
   int threads = 0;
   double msMedian = 0.0, msP95 = 0.0;
-  double worldMb = 0.0;  ///< heap memory the world holds after its last step
+  double worldMb = 0.0;  ///< heap memory the world holds after its last step (NaN: the allocator does not say)
   bool nan = false;
 };
 

@@ -257,7 +257,11 @@ TEST_F(BenchCommand, ScalingWritesEveryWorldTheExponentsAndThePlot) {
     worlds.push_back(row[0] + " " + row[1]);
     EXPECT_EQ(row[3], "3");
     EXPECT_GT(std::stod(row[4]), 0.0) << line;
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+    (void)0;  // a sanitizer's allocator keeps no counts of bytes in use: world_mb reads nan
+#else
     EXPECT_GT(std::stod(row[6]), 0.0) << line;
+#endif
   }
   EXPECT_EQ(worlds, (std::vector<std::string>{"stacks 100", "stacks 300", "pile 100", "pile 300"})) << "smallest first";
   const std::string report = readFile(out / "report.md");

@@ -53,6 +53,7 @@ TEST(BenchScaling, AWorldTenTimesLargerHoldsAboutTenTimesTheMemory) {
   EXPECT_EQ(small.steps, 4);
   EXPECT_FALSE(small.nan || large.nan);
   EXPECT_GT(small.msMedian, 0.0);
+  if (std::isnan(small.worldMb)) GTEST_SKIP() << "this allocator (a sanitizer's) keeps no counts of bytes in use";
   ASSERT_GT(small.worldMb, 0.0);
   // Per-body arrays dominate; fixed costs (the ground, the arenas) make the small world relatively larger.
   EXPECT_GT(large.worldMb / small.worldMb, 5.0);
