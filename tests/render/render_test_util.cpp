@@ -1,16 +1,13 @@
 #include "render_test_util.h"
 
-#include <unistd.h>
-
-#include <filesystem>
+#include "support/scratch_folder.h"
 
 namespace haif::render::test {
 
 std::string tempDir() {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("haif_render_test_" + std::to_string(static_cast<long>(getpid())));
-  std::filesystem::create_directories(dir);
-  return dir.string();
+  // One folder per process, made on first use and removed when the process ends.
+  static const std::string dir = haif::test::scratchDir("haif_render_test").string();
+  return dir;
 }
 
 }  // namespace haif::render::test

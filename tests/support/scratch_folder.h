@@ -3,17 +3,41 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <string>
+#include <system_error>
+#include <vector>
 #include <unistd.h>
 
 namespace haif::test {
 
-/// A unique scratch folder under the system temp folder.
+/// Removes, when the test process ends, every scratch folder it made, so that runs of the suite
+/// leave nothing under the temp folder (ctest runs each test in a process of its own). Set
+/// HAIF_KEEP_SCRATCH to keep them for a look after a failure.
+class ScratchCleanup {
+ public:
+  static void add(const std::filesystem::path& dir) { instance().dirs_.push_back(dir); }
+  ~ScratchCleanup() {
+    if (std::getenv("HAIF_KEEP_SCRATCH") != nullptr) return;
+    std::error_code ignored;
+    for (const auto& d : dirs_) std::filesystem::remove_all(d, ignored);
+  }
+
+ private:
+  static ScratchCleanup& instance() {
+    static ScratchCleanup cleanup;
+    return cleanup;
+  }
+  std::vector<std::filesystem::path> dirs_;
+};
+
+/// A unique scratch folder under the system temp folder, removed when the process ends.
 inline std::filesystem::path scratchDir(const std::string& name) {
   const auto dir = std::filesystem::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
+  ScratchCleanup::add(dir);
   return dir;
 }
 
