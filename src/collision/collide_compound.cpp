@@ -26,10 +26,17 @@ struct GroupedBuffer {
   int count = 0;
 };
 
+// Points this far apart (m) or closer count as touching when places are handed out: a body's support
+// comes first, the speculative points of parts merely near it after.
+constexpr float kNearTouch = 0.01f;
+
 // At most 4 of the candidates. Points from one part pair: the usual reduction (deepest, widest area).
-// From several: first the deepest point of each part pair, deepest pair first, so a body held by two
-// parts (a box in a corner of a drum, a table on its legs) keeps a point against each; then the points
-// farthest from those already kept.
+// From several: first the deepest point of each touching part pair, deepest pair first, so a body held
+// by two parts (a box in a corner of a drum, a table on its legs) keeps a point against each; then the
+// touching points farthest from those kept, one place left for the nearest part pair not yet held;
+// then the deepest of the rest. A place for every part pair, however far, had a box pressed on a
+// turning drum's wall held by one corner while three places went to wall boxes 10-20 cm away (inside
+// the drum's spin margin): it rocked from corner to corner, a step each, and worked its way through.
 int selectPoints(const GroupedBuffer& in, ContactCandidate* out, uint32_t* outGroup) {
   if (in.count <= kMaxManifoldPoints) {
     std::copy_n(in.pts, in.count, out);
@@ -50,21 +57,24 @@ int selectPoints(const GroupedBuffer& in, ContactCandidate* out, uint32_t* outGr
     out[n] = in.pts[i];
     outGroup[n++] = in.group[i];
   };
-  // Deepest of each group, deepest first: repeatedly the deepest point of a group not yet held.
-  while (n < kMaxManifoldPoints) {
+  auto held = [&](int i) { return std::find(outGroup, outGroup + n, in.group[i]) != outGroup + n; };
+  auto near = [&](int i) { return in.pts[i].depth >= -kNearTouch; };
+  // The deepest point of a group not yet held (among touching points only, if asked); -1 if none.
+  auto deepestUnheld = [&](bool touchingOnly) {
     int best = -1;
     for (int i = 0; i < in.count; ++i) {
-      if (taken[i] || std::find(outGroup, outGroup + n, in.group[i]) != outGroup + n) continue;
+      if (taken[i] || held(i) || (touchingOnly && !near(i))) continue;
       if (best < 0 || in.pts[i].depth > in.pts[best].depth) best = i;
     }
-    if (best < 0) break;
-    take(best);
-  }
-  while (n < kMaxManifoldPoints) {
+    return best;
+  };
+  for (int i; n < kMaxManifoldPoints && (i = deepestUnheld(true)) >= 0;) take(i);
+  const int reserve = deepestUnheld(false) >= 0 ? 1 : 0;
+  while (n < kMaxManifoldPoints - reserve) {
     int best = -1;
     float far = -1.0f;
     for (int i = 0; i < in.count; ++i) {
-      if (taken[i]) continue;
+      if (taken[i] || !near(i)) continue;
       float nearest = 1e30f;
       for (int k = 0; k < n; ++k) nearest = std::min(nearest, (in.pts[i].position - out[k].position).squaredNorm());
       if (nearest > far) {
@@ -72,6 +82,14 @@ int selectPoints(const GroupedBuffer& in, ContactCandidate* out, uint32_t* outGr
         best = i;
       }
     }
+    if (best < 0) break;
+    take(best);
+  }
+  if (const int i = deepestUnheld(false); i >= 0 && n < kMaxManifoldPoints) take(i);
+  while (n < kMaxManifoldPoints) {
+    int best = -1;
+    for (int i = 0; i < in.count; ++i)
+      if (!taken[i] && (best < 0 || in.pts[i].depth > in.pts[best].depth)) best = i;
     if (best < 0) break;
     take(best);
   }

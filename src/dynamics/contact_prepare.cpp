@@ -225,8 +225,7 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
                 (rAxn.x * wA.x() + rAxn.y * wA.y() + rAxn.z * wA.z());
   const F4 speculative = depth < 0.0f ? depth * invDt : F4{};  // approach by the gap, no faster
   const F4 excess = simd4::clampNonNegative(depth - p.slop) * (p.beta * invDt);
-  const float cap = cc.dynA && cc.dynB ? p.maxPushVelocity : p.maxPushVelocityImmovable;
-  const F4 push = excess < cap ? excess : F4{} + cap;
+  const F4 push = excess < p.maxPushVelocity ? excess : F4{} + p.maxPushVelocity;
   // A pinched body's push-outs oppose each other and cannot all be met; their impulses would grow
   // sweep after sweep and, warm started, step after step, until the body left at any speed.
   // A turning kinematic body's surface moves on an arc, not along its velocity: over the step it

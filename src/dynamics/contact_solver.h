@@ -23,9 +23,6 @@ struct SolverParams {
   /// Cap on the Baumgarte push-out speed (m/s). In a tall pile every layer's push adds up: a
   /// 100-layer pyramid compressed at 10 iterations then launched its top at 9 m/s without it.
   float maxPushVelocity = 0.2f;
-  /// The cap where one side cannot move (static or kinematic): one push, not a layer of a pile, so
-  /// nothing adds up, and a body driven into a turning drum's wall came out slower than it sank.
-  float maxPushVelocityImmovable = 1.0f;
   /// Friction also pulls back the slow tangential drift of a sticking contact (Contact::anchorA/B),
   /// at the Baumgarte rate and cap. Velocity-level friction alone let a card house creep apart
   /// (0.94 m after 2400 steps at 10 iterations; 7 mm with anchors after 3600).

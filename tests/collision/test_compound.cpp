@@ -160,5 +160,34 @@ TEST(CompoundCollide, OnlyTouchingPartsReport) {
   EXPECT_EQ(collide(Shape::compoundOf(bar), xf(Vec3::Zero()), Shape::sphere(0.2f), xf(Vec3(0, 0.6f, 0)), 0.05f, m), 0);
 }
 
+
+// A trough of three slabs (as a drum's wall boxes meet, 22.5 degrees apart) and a box lying flat on
+// the middle one, 1 cm in, its ends 3 cm short of the side slabs, all within a wide (turning drum's)
+// margin. The box keeps three points on the slab it lies on, so it is held flat; one place goes to the
+// nearer side slab's speculative point. With a place for every slab it kept one point on its support
+// and rocked from corner to corner, a step each, through a turning drum's wall.
+TEST(CompoundCollide, ABoxLyingOnOnePartKeepsItsSupportBeforeFarParts) {
+  const float a = 22.5f * kPi / 180.0f, h = 0.3f, t = 0.1f;
+  std::vector<Shape> slabs(3, Shape::box(Vec3(h, t, 0.5f)));
+  std::vector<Transform> poses{xf(Vec3::Zero())};
+  for (float side : {1.0f, -1.0f})  // the top face's inner end on the middle slab's top edge
+    poses.push_back(xf(Vec3(side * (h + h * std::cos(a) + t * std::sin(a)), t + h * std::sin(a) - t * std::cos(a), 0),
+                       Quat(Eigen::AngleAxisf(side * a, Vec3::UnitZ()))));
+  auto trough = compound(slabs, poses);
+  const Shape box = Shape::box(Vec3(0.2f, 0.06f, 0.08f));
+  // 1 cm into the middle slab, tipped a little towards +x so one end is deeper.
+  const Transform xb = xf(Vec3(0.02f, t + 0.06f - 0.01f, 0), Quat(Eigen::AngleAxisf(0.005f, Vec3::UnitZ())));
+  Manifold m;
+  ASSERT_EQ(collideBoth(Shape::compoundOf(trough), xf(trough->centroid), box, xb, 0.25f, m), 4);
+  int onMiddle = 0, onSide = 0;
+  for (int i = 0; i < m.count; ++i) {
+    const ContactPoint& p = m.points[i];
+    if (p.normal.y() > 0.999f && p.depth > 0.0f) ++onMiddle;
+    if (std::abs(p.normal.x()) > 0.3f) ++onSide;
+  }
+  EXPECT_EQ(onMiddle, 3) << "touching points on the slab the box lies on";
+  EXPECT_EQ(onSide, 1) << "speculative points against a side slab";
+}
+
 }  // namespace
 }  // namespace haif::test
