@@ -2,19 +2,22 @@
 
 namespace haif {
 
+PinchDetector::Side PinchDetector::sideOf(const BodyStore& bodies, const ContactEdge& e, const Contact& c) {
+  const bool da = bodies.isAwakeDynamic(e.a);
+  const Vec3& n = c.manifold.points[0].normal;  // from shape A into shape B
+  return Side{da ? e.a : e.b, da ? e.b : e.a, da ? Vec3(-n) : n};
+}
+
 uint32_t PinchDetector::mark(const BodyStore& bodies, const ContactEdge* edges, std::vector<Contact>& contacts) {
   if (noteOfBody_.size() < bodies.size()) noteOfBody_.resize(bodies.size(), -1);
   notes_.clear();
   candidates_.clear();
   const uint32_t n = static_cast<uint32_t>(contacts.size());
   for (uint32_t ci = 0; ci < n; ++ci) {
-    const ContactEdge& e = edges[ci];
-    if (!e.pressedByImmovable) continue;
-    const bool da = bodies.isAwakeDynamic(e.a);
-    const uint32_t dyn = da ? e.a : e.b;
-    const Contact& c = contacts[ci];
-    // The normal points from shape A to shape B: into the dynamic body when it is B.
-    const Vec3 into = da ? Vec3(-c.manifold.points[0].normal) : c.manifold.points[0].normal;
+    if (!edges[ci].pressedByImmovable) continue;
+    const Side side = sideOf(bodies, edges[ci], contacts[ci]);
+    const uint32_t dyn = side.dyn;
+    const Vec3& into = side.into;
     int32_t& slot = noteOfBody_[dyn];
     if (slot < 0) {
       slot = int32_t(notes_.size());
@@ -47,21 +50,10 @@ uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* 
     pressureOfBody_[body] = int32_t(pressures_.size());
     pressures_.push_back(Pressure{body, into, source, int32_t(via), from});
   };
-  // The dynamic body of an immovable contact, the direction it is pushed in, and the other body.
-  struct Side {
-    uint32_t dyn, other;
-    Vec3 into;
-  };
-  auto sideOf = [&](uint32_t ci) {
-    const ContactEdge& e = edges[ci];
-    const bool da = bodies.isAwakeDynamic(e.a);
-    const Vec3& n = contacts[ci].manifold.points[0].normal;  // from A into B
-    return Side{da ? e.a : e.b, da ? e.b : e.a, da ? Vec3(-n) : n};
-  };
   const uint32_t n = static_cast<uint32_t>(contacts.size());
   // Seeds: a kinematic body whose surface, where it overlaps a dynamic body, moves into it.
   for (const Candidate& k : candidates_) {
-    const Side s = sideOf(k.contact);
+    const Side s = sideOf(bodies, edges[k.contact], contacts[k.contact]);
     if (bodies.kind[s.other] != BodyKind::Kinematic || pressureOfBody_[s.dyn] >= 0) continue;
     const Vec3 at = contacts[k.contact].manifold.points[0].position;
     const Vec3 surface = bodies.v[s.other] + bodies.w[s.other].cross(at - bodies.xf[s.other].p);
@@ -92,7 +84,7 @@ uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* 
   // carries it along.)
   uint32_t crushed = 0;
   for (const Candidate& k : candidates_) {
-    const Side s = sideOf(k.contact);
+    const Side s = sideOf(bodies, edges[k.contact], contacts[k.contact]);
     const int32_t first = pressureOfBody_[s.dyn];
     if (first < 0 || s.other == pressures_[first].source || s.into.dot(pressures_[first].into) >= kOpposed) continue;
     contacts[k.contact].pinched = true;

@@ -47,6 +47,14 @@ class PinchDetector {
   static constexpr int kCrushPasses = 8;
 
  private:
+  // The dynamic body of a contact with an immovable body, the other body, and the direction the
+  // contact pushes the dynamic one in.
+  struct Side {
+    uint32_t dyn, other;
+    Vec3 into;
+  };
+  static Side sideOf(const BodyStore& bodies, const ContactEdge& e, const Contact& c);
+
   // The crushes (header comment): returns the bodies found crushed that were not pinched already.
   uint32_t markCrushes(const BodyStore& bodies, const ContactEdge* edges, std::vector<Contact>& contacts);
 
