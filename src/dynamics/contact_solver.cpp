@@ -111,9 +111,7 @@ inline void applyImpulses(const ContactConstraint& c, const RowImpulses& r, F4& 
 
 // rowBias of the four rows.
 inline F4 rowBiases(const ContactConstraint& c, bool useBias) {
-  if (useBias) return load(c.bias);
-  const F4 bounce = load(c.restitutionBias);
-  return (bounce < 0.0f) & (load(c.normalImpulse) > 0.0f) ? bounce : simd4::clampNonNegative(load(c.bias));
+  return useBias ? load(c.bias) : relaxBias(load(c.bias), load(c.restitutionBias), load(c.normalImpulse));
 }
 
 }  // namespace

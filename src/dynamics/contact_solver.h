@@ -152,12 +152,17 @@ inline float rowVelocity(const ContactConstraint& c, int i, const Vec3& va, cons
   return c.normal.row(i).dot(vb - va) + c.rBxn.row(i).dot(wb) - c.rAxn.row(i).dot(wa);
 }
 
-/// b of a normal row: with position correction in a main sweep (`useBias`), the relax bias or a
-/// bounce in a relax sweep.
+/// b of a normal row in a relax sweep, written once for every width (float, F4, F8): where the row
+/// pushes, its bounce (a turning kinematic surface's lead is folded into it); elsewhere only a
+/// speculative gap's allowance, no push-out. A main sweep uses the row's bias as it is.
+template <class V>
+inline V relaxBias(V bias, V bounce, V impulse) {
+  return (bounce < 0.0f) & (impulse > 0.0f) ? bounce : (bias > 0.0f ? bias : V{});
+}
+
+/// b of a normal row: with position correction in a main sweep (`useBias`), else relaxBias.
 inline float rowBias(const ContactConstraint& c, int i, bool useBias) {
-  return useBias ? c.bias[i]
-                 : (c.restitutionBias[i] < 0.0f && c.normalImpulse[i] > 0.0f ? c.restitutionBias[i]
-                                                                               : (c.bias[i] > 0.0f ? c.bias[i] : 0.0f));
+  return useBias ? c.bias[i] : relaxBias(c.bias[i], c.restitutionBias[i], c.normalImpulse[i]);
 }
 
 /// Coupling of the normal rows: K[i][j] = J_i M^-1 J_j^T (rows and columns past the count are zero).

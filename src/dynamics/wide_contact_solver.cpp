@@ -172,7 +172,6 @@ void packWide(const ContactConstraint* cs, int lanes, WideContactBatch& w) {
       setLane(w.iBn[i], l, c.iBn.row(i));
       w.normalMass[i][l] = c.normalMass[i];
       w.bias[i][l] = c.bias[i];
-      w.relaxBias[i][l] = c.bias[i] > 0.0f ? c.bias[i] : 0.0f;
       w.restitutionBias[i][l] = c.restitutionBias[i];
       w.normalImpulse[i][l] = c.normalImpulse[i];
       for (int j = 0; j < c.count; ++j) {
@@ -309,8 +308,7 @@ SweepResult solveWide(BodyStore& bodies, WideContactBatch& w, float omega, bool 
   const V3 dv = vb - va;
   for (int i = 0; i < kP; ++i) {
     vn[i] = dot(w.normal[i], dv) + dot(w.rBxn[i], wb) - dot(w.rAxn[i], wa);
-    const I8 bounce = (w.restitutionBias[i] < 0.0f) & (w.normalImpulse[i] > 0.0f);
-    bias[i] = useBias ? w.bias[i] : (bounce ? w.restitutionBias[i] : w.relaxBias[i]);
+    bias[i] = useBias ? w.bias[i] : relaxBias(w.bias[i], w.restitutionBias[i], w.normalImpulse[i]);
   }
   I8 loaded = w.blockExact;
   F8 next[kP];

@@ -45,7 +45,7 @@ struct alignas(32) WideContactBatch {
   // Normal rows, per point.
   V3 normal[kMaxManifoldPoints], rAxn[kMaxManifoldPoints], rBxn[kMaxManifoldPoints];
   V3 iAn[kMaxManifoldPoints], iBn[kMaxManifoldPoints];
-  F8 normalMass[kMaxManifoldPoints], bias[kMaxManifoldPoints], relaxBias[kMaxManifoldPoints];
+  F8 normalMass[kMaxManifoldPoints], bias[kMaxManifoldPoints];
   F8 restitutionBias[kMaxManifoldPoints], normalImpulse[kMaxManifoldPoints];
   F8 coupling[kMaxManifoldPoints][kMaxManifoldPoints];
   F8 blockInverse[kMaxManifoldPoints][kMaxManifoldPoints];
