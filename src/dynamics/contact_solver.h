@@ -155,10 +155,15 @@ inline float rowVelocity(const ContactConstraint& c, int i, const Vec3& va, cons
 /// b of a normal row in a relax sweep, written once for every width (float, F4, F8): where the row
 /// pushes, its bounce (a turning kinematic surface's lead is folded into it); elsewhere only a
 /// speculative gap's allowance, no push-out. A main sweep uses the row's bias as it is.
+// Always inlined, never part of an interface: GCC's note that an 8-lane vector passed by value has
+// another ABI in builds without AVX does not apply.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
 template <class V>
-inline V relaxBias(V bias, V bounce, V impulse) {
-  return (bounce < 0.0f) & (impulse > 0.0f) ? bounce : (bias > 0.0f ? bias : V{});
+[[gnu::always_inline]] inline V relaxBias(V bias, V bounce, V impulse) {
+  return ((bounce < 0.0f) & (impulse > 0.0f)) ? bounce : (bias > 0.0f ? bias : V{});
 }
+#pragma GCC diagnostic pop
 
 /// b of a normal row: with position correction in a main sweep (`useBias`), else relaxBias.
 inline float rowBias(const ContactConstraint& c, int i, bool useBias) {
