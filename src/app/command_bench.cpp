@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <sstream>
 
 namespace haif {
@@ -84,6 +85,23 @@ bool samePoint(const BenchPoint& a, const BenchPoint& b) {
          a.spec.solver.iterations == b.spec.solver.iterations && a.spec.solver.budgetMs == b.spec.solver.budgetMs;
 }
 
+// Writes a bench's folder as one unit (staged, then renamed into place): the plots first, since the
+// report names those written, then the CSV (markers[0]) and report.md. On failure: one message, 1.
+int writeBenchOutput(const std::string& outDir, const std::vector<std::string>& markers,
+                     const std::function<bool(const std::string& dir, std::string& error)>& writePlots,
+                     const std::string& csv, const std::function<std::string()>& report) {
+  std::string error;
+  StagedFolder output;
+  if (!output.open(outDir, markers, error) || !writePlots(output.path(), error) ||
+      !writeFileAtomic(output.path() + "/" + markers[0], csv, error) ||
+      !writeFileAtomic(output.path() + "/report.md", report(), error) || !output.commit(error)) {
+    waitIfInterrupted();
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return 1;
+  }
+  return 0;
+}
+
 // --scaling: the stacks and pile families at each size, smallest first; DIR/scaling.csv,
 // DIR/report.md and DIR/scaling.png.
 int benchScaling(const std::vector<double>& sizes, int steps, int threads, const std::string& outDir) {
@@ -108,15 +126,11 @@ int benchScaling(const std::vector<double>& sizes, int steps, int threads, const
       rows.push_back(r);
     }
   }
-  StagedFolder output;
   std::string plot;
-  if (!output.open(outDir, markers, error) || !writeScalingPlot(output.path(), rows, plot, error) ||
-      !writeFileAtomic(output.path() + "/scaling.csv", scalingCsv(rows), error) ||
-      !writeFileAtomic(output.path() + "/report.md", scalingMarkdown(rows, plot), error) || !output.commit(error)) {
-    waitIfInterrupted();
-    std::fprintf(stderr, "%s\n", error.c_str());
+  if (writeBenchOutput(
+          outDir, markers, [&](const std::string& dir, std::string& e) { return writeScalingPlot(dir, rows, plot, e); },
+          scalingCsv(rows), [&] { return scalingMarkdown(rows, plot); }) != 0)
     return 1;
-  }
   std::printf("wrote %s/scaling.csv, %s/report.md%s\n", outDir.c_str(), outDir.c_str(),
               plot.empty() ? "" : (" and " + outDir + "/" + plot).c_str());
   return 0;
@@ -264,14 +278,11 @@ int commandBench(int argc, char** argv) {
   info.rounds = rounds;
   info.engines = engines;
   if (!benchPlotsAvailable()) info.plotsNote = "this haif was built without the renderer (HAIF_BUILD_RENDER=OFF)";
-  StagedFolder output;
-  if (!output.open(outDir, markers, error) || !writeBenchPlots(output.path(), rows, info.plots, error) ||
-      !writeFileAtomic(output.path() + "/results.csv", benchResultsCsv(rows), error) ||
-      !writeFileAtomic(output.path() + "/report.md", benchReportMarkdown(rows, info), error) || !output.commit(error)) {
-    waitIfInterrupted();
-    std::fprintf(stderr, "%s\n", error.c_str());
+  if (writeBenchOutput(
+          outDir, markers,
+          [&](const std::string& dir, std::string& e) { return writeBenchPlots(dir, rows, info.plots, e); },
+          benchResultsCsv(rows), [&] { return benchReportMarkdown(rows, info); }) != 0)
     return 1;
-  }
   std::printf("wrote %s/results.csv, %s/report.md and %zu plot(s)\n", outDir.c_str(), outDir.c_str(),
               info.plots.size());
   return 0;
