@@ -59,17 +59,17 @@ int selectPoints(const GroupedBuffer& in, ContactCandidate* out, uint32_t* outGr
   };
   auto held = [&](int i) { return std::find(outGroup, outGroup + n, in.group[i]) != outGroup + n; };
   auto near = [&](int i) { return in.pts[i].depth >= -kNearTouch; };
-  // The deepest point of a group not yet held (among touching points only, if asked); -1 if none.
-  auto deepestUnheld = [&](bool touchingOnly) {
+  // The deepest point not taken (of a group not yet held, touching, if asked); -1 if none.
+  auto deepest = [&](bool unheldOnly, bool touchingOnly) {
     int best = -1;
     for (int i = 0; i < in.count; ++i) {
-      if (taken[i] || held(i) || (touchingOnly && !near(i))) continue;
+      if (taken[i] || (unheldOnly && held(i)) || (touchingOnly && !near(i))) continue;
       if (best < 0 || in.pts[i].depth > in.pts[best].depth) best = i;
     }
     return best;
   };
-  for (int i; n < kMaxManifoldPoints && (i = deepestUnheld(true)) >= 0;) take(i);
-  const int reserve = deepestUnheld(false) >= 0 ? 1 : 0;
+  for (int i; n < kMaxManifoldPoints && (i = deepest(true, true)) >= 0;) take(i);
+  const int reserve = deepest(true, false) >= 0 ? 1 : 0;
   while (n < kMaxManifoldPoints - reserve) {
     int best = -1;
     float far = -1.0f;
@@ -85,14 +85,8 @@ int selectPoints(const GroupedBuffer& in, ContactCandidate* out, uint32_t* outGr
     if (best < 0) break;
     take(best);
   }
-  if (const int i = deepestUnheld(false); i >= 0 && n < kMaxManifoldPoints) take(i);
-  while (n < kMaxManifoldPoints) {
-    int best = -1;
-    for (int i = 0; i < in.count; ++i)
-      if (!taken[i] && (best < 0 || in.pts[i].depth > in.pts[best].depth)) best = i;
-    if (best < 0) break;
-    take(best);
-  }
+  if (const int i = deepest(true, false); i >= 0 && n < kMaxManifoldPoints) take(i);
+  for (int i; n < kMaxManifoldPoints && (i = deepest(false, false)) >= 0;) take(i);
   return n;
 }
 

@@ -142,10 +142,6 @@ inline void storeRows(RowVectors& rows, const Lanes3& v) {
   store(rows.z, v.z);
 }
 
-}  // namespace
-
-namespace {
-
 // The centripetal acceleration of a turning kinematic body's surface at each point, along the normal
 // into the dynamic body it touches (m/s², 0 where the surface turns away or nothing turns).
 F4 turningLead(const BodyStore& bodies, const ContactConstraint& cc, const Vec3& pA, const Vec3& pB, const F4& px,
