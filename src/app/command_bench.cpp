@@ -162,10 +162,13 @@ int commandBench(int argc, char** argv) {
     return benchScaling(sizes, steps, threads, cl.get("--out", "output/bench"));
   }
   // --quick: fewer scenes, steps and sweep points, to finish in a few minutes on a small machine.
-  int steps = isQuick ? 120 : 300, threads = int(tbb::info::default_concurrency()), errorEvery = 0, rounds = 1;
+  int steps = isQuick ? 120 : 300, errorEvery = 0, rounds = 1;
   double seedBudget = 4.0;
-  std::vector<double> iterations, budgets;
-  if (!cl.getInt("--steps", 1, 1000000, steps, error) || !cl.getInt("--threads", 1, 1024, threads, error) ||
+  // --threads 1,2,4,8,16 sweeps thread counts (every set-up at each); the seed's table uses the most.
+  std::vector<double> iterations, budgets, threadCounts;
+  if (!cl.getInt("--steps", 1, 1000000, steps, error) ||
+      !parseNumbers("--threads", cl.get("--threads", std::to_string(tbb::info::default_concurrency())), 1, 1024,
+                    true, threadCounts, error) ||
       !cl.getInt("--repeat", 1, 100, rounds, error)) {
     std::fprintf(stderr, "%s\n", error.c_str());
     return 2;
@@ -234,10 +237,14 @@ int commandBench(int argc, char** argv) {
       if (samePoint(p, q)) return;
     points.push_back(p);
   };
-  for (const std::string& e : engines)
-    for (double i : iterations) add(point(e, "fixed", i, threads));
-  if (haif)
-    for (double b : budgets) add(point("haif", "adaptive", b, threads));
+  std::sort(threadCounts.begin(), threadCounts.end());
+  const int threads = int(threadCounts.back());
+  for (double t : threadCounts) {
+    for (const std::string& e : engines)
+      for (double i : iterations) add(point(e, "fixed", i, int(t)));
+    if (haif)
+      for (double b : budgets) add(point("haif", "adaptive", b, int(t)));
+  }
   if (haif) add(point("haif", "fixed", 10, 1));
   if (haif) add(point("haif", "adaptive", seedBudget, threads));
   if (bullet) add(point("bullet", "fixed", 10, 1));
@@ -272,6 +279,7 @@ int commandBench(int argc, char** argv) {
   BenchReportInfo info;
   info.steps = steps;
   info.threads = threads;
+  for (double t : threadCounts) info.threadCounts.push_back(int(t));
   info.errorEvery = errorEvery;
   info.seedBudgetMs = seedBudget;
   info.quick = isQuick;

@@ -22,7 +22,7 @@ const char* const kUsage =
       "                  [--error-every K] [--video FILE.mp4] [--render-phases] [--gl osmesa|egl|auto]\n"
       "  bench           run time against error: iteration and budget sweeps per scene and engine,\n"
       "                  the seed's table (sequential / HAIF / Bullet); results.csv, report.md, plots\n"
-      "                  [--scenes a,b,..] [--engines haif,bullet] [--quick] [--steps N] [--threads T]\n"
+      "                  [--scenes a,b,..] [--engines haif,bullet] [--quick] [--steps N] [--threads T,..]\n"
       "                  [--iterations 1,2,..] [--budgets 1,2,..] [--budget-ms B] [--error-every K]\n"
       "                  [--repeat R] [--out DIR]\n"
       "                  --scaling: ms/step and memory against bodies (stacks and piles, 10^3 to 10^5),\n"

@@ -54,6 +54,44 @@ const BenchResult* cheapestWithin(const std::vector<BenchResult>& rows, const st
   return best;
 }
 
+// One row per scene and HAIF set-up swept at several thread counts: ms/step at each, and the
+// speed-up over the fewest threads (efficiency = speed-up / thread ratio, 100%: perfect scaling).
+std::string threadScalingMarkdown(const std::vector<BenchResult>& rows, const std::vector<std::string>& scenes,
+                                  const std::vector<int>& threadCounts) {
+  std::string md = "\n## Threads\n\nHAIF's median ms/step at each thread count, and (in brackets) the speed-up over " +
+                   std::to_string(threadCounts.front()) + " thread(s) / the parallel efficiency.\n\n| scene | set-up |";
+  for (int t : threadCounts) md += " " + std::to_string(t) + "T |";
+  md += "\n|---|---|";
+  for (size_t i = 0; i < threadCounts.size(); ++i) md += "---:|";
+  md += "\n";
+  for (const std::string& s : scenes) {
+    std::vector<std::string> labels;
+    for (const BenchResult& r : rows)
+      if (r.scene == s && r.engine == "haif" && std::find(labels.begin(), labels.end(), r.label) == labels.end())
+        labels.push_back(r.label);
+    for (const std::string& label : labels) {
+      const BenchResult* base = nullptr;
+      std::string cells;
+      int found = 0;
+      for (int t : threadCounts) {
+        const BenchResult* r = nullptr;
+        for (const BenchResult& q : rows)
+          if (q.scene == s && q.engine == "haif" && q.label == label && q.threads == t) r = &q;
+        if (r && !base) base = r;
+        found += r != nullptr;
+        cells += " " + (r ? fmt("%.3f", r->msMedian) : std::string("—"));
+        if (r && base && r != base && r->msMedian > 0.0) {
+          const double speedUp = base->msMedian / r->msMedian;
+          cells += " (" + fmt("%.2fx", speedUp) + " / " + fmt("%.0f%%", 100.0 * speedUp * base->threads / t) + ")";
+        }
+        cells += " |";
+      }
+      if (found > 1) md += "| " + s + " | " + label + " |" + cells + "\n";
+    }
+  }
+  return md;
+}
+
 std::string who(const BenchResult& r) {
   return r.label + (r.engine == "haif" ? " (" + std::to_string(r.threads) + "T)" : "");
 }
@@ -149,6 +187,8 @@ std::string benchReportMarkdown(const std::vector<BenchResult>& rows, const Benc
     md += " | " + (t.haif ? fmt("%.1f", t.haif->iterationsMean) : "—") + " | " +
           (t.haif ? fmt("%.1f%%", 100.0 * t.haif->missRate) : "—") + " |\n";
   }
+
+  if (info.threadCounts.size() > 1) md += threadScalingMarkdown(rows, scenes, info.threadCounts);
 
   md += "\n## Equal error\n\nFor a reference set-up, the cheapest set-up of the other engine whose error is no "
         "larger (speed-up = reference ms / that ms; > 1: the other engine reaches that error faster). These are "

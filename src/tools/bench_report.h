@@ -12,7 +12,8 @@ namespace haif {
 /// How the bench was run, for the report's preamble.
 struct BenchReportInfo {
   int steps = 0;
-  int threads = 1;              ///< HAIF's threads in the sweep
+  int threads = 1;              ///< HAIF's threads in the seed's table (the most swept)
+  std::vector<int> threadCounts;  ///< every thread count swept, fewest first (more than one: a scaling table)
   int errorEvery = 0;           ///< solve error sampled every this many steps (0: off)
   double seedBudgetMs = 4.0;    ///< HAIF's budget in the seed's table
   bool quick = false;

@@ -211,6 +211,42 @@ TEST_F(BenchCommand, RepeatRunsEverySetUpInRoundsAndReportsTheirSpread) {
   EXPECT_NE(readFile(out / "report.md").find("ran 3 times, in rotation"), std::string::npos);
 }
 
+TEST_F(BenchCommand, AThreadListRunsEverySetUpAtEachCountAndTablesTheSpeedUp) {
+  const fs::path out = dir_ / "out";
+  const Result r = haif("bench --scenes '" + kStacks + "' --engines haif --steps 10 --iterations 4 --budgets 3 " +
+                        "--threads 2,1 --budget-ms 3 --error-every 0 --out '" + out.string() + "'");
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::stringstream lines(readFile(out / "results.csv"));
+  std::string headerLine;
+  ASSERT_TRUE(std::getline(lines, headerLine));
+  const std::vector<std::string> header = split(headerLine);
+  const size_t label = size_t(std::find(header.begin(), header.end(), "label") - header.begin());
+  const size_t threads = size_t(std::find(header.begin(), header.end(), "threads") - header.begin());
+  std::map<std::string, std::vector<std::string>> countsByLabel;
+  for (std::string line; std::getline(lines, line);) {
+    const std::vector<std::string> row = split(line);
+    if (row.size() > std::max(label, threads)) countsByLabel[row[label]].push_back(row[threads]);
+  }
+  // fixed:4 and adaptive:3 at 1 and 2 threads; the seed's sequential fixed:10 on 1 (no repeats).
+  EXPECT_EQ(countsByLabel["haif fixed:4"], (std::vector<std::string>{"1", "2"}));
+  EXPECT_EQ(countsByLabel["haif adaptive:3"], (std::vector<std::string>{"1", "2"}));
+  EXPECT_EQ(countsByLabel["haif fixed:10"], (std::vector<std::string>{"1"}));
+  const std::string report = readFile(out / "report.md");
+  const size_t table = report.find("## Threads");
+  ASSERT_NE(table, std::string::npos) << report;
+  EXPECT_NE(report.find("| scene | set-up | 1T | 2T |", table), std::string::npos);
+  const size_t row = report.find("| stacks_100 | haif fixed:4 |", table);
+  ASSERT_NE(row, std::string::npos);
+  EXPECT_NE(report.find("x / ", row), std::string::npos) << "speed-up and efficiency in the 2T cell";
+  // One thread count: no scaling table.
+  const fs::path one = dir_ / "one";
+  ASSERT_EQ(haif("bench --scenes '" + kStacks + "' --engines haif --steps 5 --iterations 4 --budgets 3 " +
+                 "--threads 1 --error-every 0 --out '" + one.string() + "'")
+                .exitCode,
+            0);
+  EXPECT_EQ(readFile(one / "report.md").find("## Threads"), std::string::npos);
+}
+
 TEST_F(BenchCommand, UnknownEngineIsRefused) {
   const fs::path out = dir_ / "out";
   const std::string tail = " --steps 5 --out '" + out.string() + "'";
@@ -235,6 +271,7 @@ TEST_F(BenchCommand, BadListsAndMissingScenes) {
   expectCleanFailure(haif("bench --scenes '" + kStacks + "' --budgets fast" + tail), out, {"--budgets", "fast"});
   expectCleanFailure(haif("bench --scenes '" + kStacks + "' --steps 0 --out '" + out.string() + "'"), out, {"--steps"});
   expectCleanFailure(haif("bench --scenes '" + kStacks + "' --repeat 0" + tail), out, {"--repeat"});
+  expectCleanFailure(haif("bench --scenes '" + kStacks + "' --threads 2,0" + tail), out, {"--threads", "'0'"});
   const std::string missing = (dir_ / "no_such_scene.json").string();
   expectCleanFailure(haif("bench --scenes '" + missing + "'" + tail), out, {missing});
   EXPECT_FALSE(fs::exists(out));
