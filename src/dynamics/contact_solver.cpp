@@ -50,9 +50,6 @@ inline F4 ontoFrictionCircle(F4 f, float limit) {
   return f * (len2 > 0.0f ? limit / std::sqrt(len2) : 0.0f);
 }
 
-// f clamped to [−maxTwist, maxTwist] lane by lane, as std::clamp.
-inline F4 clampTwist(F4 f, F4 maxTwist) { return f > maxTwist ? maxTwist : (f < -maxTwist ? -maxTwist : f); }
-
 // Lanes 0 and 1 of the tangent impulses, lanes 2 and 3 of the twist impulses.
 inline F4 joinFriction(F4 tangent, F4 twist) { return __builtin_shuffle(tangent, twist, simd4::I4{0, 1, 6, 7}); }
 
@@ -147,27 +144,13 @@ inline F4 solveNormalBlock(ContactConstraint& c, F4 va, F4 wa, F4 vb, F4 wb,
       return next - start;
     }
   }
-  float lambda[kMaxManifoldPoints];
+  alignas(16) float lambda[kMaxManifoldPoints], v[kMaxManifoldPoints], b[kMaxManifoldPoints];
   store(lambda, start);
-  if (c.count == 1) {
-    // One row (a sphere, a vertex): one projected step, no coupling to follow.
-    lambda[0] = std::max(0.0f, lambda[0] - omega * c.normalMass[0] * (vn[0] + bias[0]));
-  } else {
-    float K[kMaxManifoldPoints][kMaxManifoldPoints];
-    normalCoupling(c, K);
-    for (int pass = 0; pass < kManifoldNormalPasses; ++pass) {
-      bool moved = false;
-      for (int i = 0; i < c.count; ++i) {
-        const float old = lambda[i];
-        lambda[i] = std::max(0.0f, old - omega * c.normalMass[i] * (vn[i] + bias[i]));
-        const float d = lambda[i] - old;
-        if (d == 0.0f) continue;
-        moved = true;
-        vn += load(K[i]) * d;  // K is symmetric: row i is column i
-      }
-      if (!moved) break;  // a pass that changed nothing ends the block solve (separated contacts: at once)
-    }
-  }
+  store(v, vn);
+  store(b, bias);
+  float K[kMaxManifoldPoints][kMaxManifoldPoints];
+  if (c.count > 1) normalCoupling(c, K);
+  projectedNormalPasses(c.count, v, b, c.normalMass, lambda, omega, [&](int i, int j) { return K[i][j]; });
   const F4 next = load(lambda);
   store(c.normalImpulse, next);
   return next - start;

@@ -113,6 +113,31 @@ struct alignas(16) ContactConstraint {
 /// small 4x4 problem to near convergence inside each sweep holds it still.
 constexpr int kManifoldNormalPasses = 4;
 
+/// Those passes, written once for the scalar sweep and the wide one (which runs them lane by lane
+/// where the exact block would pull): row i of m steps λ_i to max(0, λ_i − ω mass_i (v_i + bias_i)),
+/// and every row's velocity v_j follows through the coupling K(i, j); a pass that changes nothing
+/// ends them (separated contacts: at once). One row needs one step and no coupling.
+template <class Coupling>
+[[gnu::always_inline]] inline void projectedNormalPasses(int m, float* v, const float* bias, const float* mass,
+                                                         float* lambda, float omega, const Coupling& K) {
+  if (m == 1) {
+    lambda[0] = std::max(0.0f, lambda[0] - omega * mass[0] * (v[0] + bias[0]));
+    return;
+  }
+  for (int pass = 0; pass < kManifoldNormalPasses; ++pass) {
+    bool moved = false;
+    for (int i = 0; i < m; ++i) {
+      const float old = lambda[i];
+      lambda[i] = std::max(0.0f, old - omega * mass[i] * (v[i] + bias[i]));
+      const float d = lambda[i] - old;
+      if (d == 0.0f) continue;
+      moved = true;
+      for (int j = 0; j < m; ++j) v[j] += K(i, j) * d;
+    }
+    if (!moved) break;
+  }
+}
+
 /// Solver rows one manifold of `points` points costs per sweep: its normal rows and 3 friction rows.
 constexpr uint32_t solverRowsFor(int points) { return points > 0 ? uint32_t(points) + 3u : 0u; }
 
@@ -162,6 +187,13 @@ inline float rowVelocity(const ContactConstraint& c, int i, const Vec3& va, cons
 template <class V>
 [[gnu::always_inline]] inline V relaxBias(V bias, V bounce, V impulse) {
   return ((bounce < 0.0f) & (impulse > 0.0f)) ? bounce : (bias > 0.0f ? bias : V{});
+}
+
+/// A twist impulse held to [−maxTwist, maxTwist] (maxTwist = μ Σλn times the manifold's twist lever),
+/// for every width (F4 lanes, F8), in the sweeps and in the accelerated step.
+template <class V>
+[[gnu::always_inline]] inline V clampTwist(V x, V maxTwist) {
+  return x > maxTwist ? maxTwist : (x < -maxTwist ? -maxTwist : x);
 }
 #pragma GCC diagnostic pop
 

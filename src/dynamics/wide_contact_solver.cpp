@@ -227,25 +227,14 @@ namespace {
 // The projected passes of solveNormalBlock for lane l, on the lane's velocities vn (after friction).
 void normalPassesLane(WideContactBatch& w, int l, const F8* vn, const F8* bias, float omega, F8* applied) {
   const int m = w.count[l];
-  float v[kP], b[kP], lambda[kP];
+  float v[kP], b[kP], mass[kP], lambda[kP];
   for (int i = 0; i < m; ++i) {
     v[i] = vn[i][l];
     b[i] = bias[i][l];
+    mass[i] = w.normalMass[i][l];
     lambda[i] = w.normalImpulse[i][l];
   }
-  const int passes = m > 1 ? kManifoldNormalPasses : 1;
-  for (int pass = 0; pass < passes; ++pass) {
-    bool moved = false;
-    for (int i = 0; i < m; ++i) {
-      const float old = lambda[i];
-      lambda[i] = std::max(0.0f, old - omega * w.normalMass[i][l] * (v[i] + b[i]));
-      const float d = lambda[i] - old;
-      if (d == 0.0f) continue;
-      moved = true;
-      for (int j = 0; j < m; ++j) v[j] += w.coupling[i][j][l] * d;
-    }
-    if (!moved) break;
-  }
+  projectedNormalPasses(m, v, b, mass, lambda, omega, [&](int i, int j) { return w.coupling[i][j][l]; });
   for (int i = 0; i < m; ++i) {
     applied[i][l] = lambda[i] - w.normalImpulse[i][l];
     w.normalImpulse[i][l] = lambda[i];
@@ -267,8 +256,7 @@ SweepResult solveWide(BodyStore& bodies, WideContactBatch& w, float omega, bool 
     const F8 vt = dot(w.twistAxis, wb - wa);
     const F8 maxTwist = limit * w.twistRadius;
     const F8 old = w.twistImpulse;
-    F8 x = old - om * w.twistMass * vt;
-    x = x < -maxTwist ? -maxTwist : (maxTwist < x ? maxTwist : x);
+    const F8 x = clampTwist(old - om * w.twistMass * vt, maxTwist);
     w.twistImpulse = x;
     const F8 applied = x - old;
     w.delta[kP + 2] = applied;
@@ -380,8 +368,7 @@ void accelerateWide(BodyStore& bodies, WideContactBatch& w, float beta) {
   angB += a1 * w.iBt1;
   angB += a2 * w.iBt2;
   const F8 maxTwist = limit * w.twistRadius;
-  F8 twist = w.twistImpulse + bt * d[tw];
-  twist = twist < -maxTwist ? -maxTwist : (maxTwist < twist ? maxTwist : twist);
+  const F8 twist = clampTwist(F8(w.twistImpulse + bt * d[tw]), maxTwist);
   angA += (twist - w.twistImpulse) * w.iAtw;
   angB += (twist - w.twistImpulse) * w.iBtw;
   w.twistImpulse = twist;

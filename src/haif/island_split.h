@@ -53,6 +53,9 @@ class IslandSplitter {
              StripLayout& out);
 
  private:
+  template <class First>
+  void selectBoundaries(uint32_t s0, uint32_t s1, const First& first);
+
   std::vector<uint64_t> keys_;                    // (position along the axis, body) of the island's bodies, packed
   std::vector<uint32_t> stripOfBody_;             // per body id
   std::vector<uint32_t> stripOfContact_;          // per contact of the island, in island order
