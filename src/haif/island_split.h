@@ -51,6 +51,8 @@ class IslandSplitter {
   /// vector when there is none). Keeps its scratch buffers between steps.
   void split(const BodyStore& bodies, const ContactEdge* contacts, const Vec3& up, IslandSet& set, uint32_t k,
              StripLayout& out);
+  /// The strip of a body of the island last split (a body of no split island: meaningless).
+  uint32_t stripOf(uint32_t body) const { return stripOfBody_[body]; }
 
  private:
   template <class First>

@@ -66,6 +66,33 @@ TEST(IslandSplit, StripsOfOnePhaseShareNoDynamicBody) {
   EXPECT_LT(layout.criticalRows(), isl.rows);
 }
 
+TEST(IslandSplit, StripsHoldEqualShareOfTheBodiesInOrderAlongTheCut) {
+  World w;
+  buildPyramid(w, 40, 2);  // 820 boxes: the cut runs along x, the pyramid's width
+  IslandSet copy = w.islands();
+  IslandSplitter splitter;
+  StripLayout layout;
+  splitter.split(w.bodies(), w.contactEdges().data(), Vec3::UnitY(), copy, 0, layout);
+  const Island& isl = copy.islands[0];
+  std::vector<uint32_t> count(layout.strips, 0);
+  std::vector<float> lo(layout.strips, 1e30f), hi(layout.strips, -1e30f);
+  for (uint32_t j = 0; j < isl.bodyCount; ++j) {
+    const uint32_t b = copy.bodies[isl.firstBody + j], s = splitter.stripOf(b);
+    ASSERT_LT(s, layout.strips);
+    ++count[s];
+    lo[s] = std::min(lo[s], w.bodies().xf[b].p.x());
+    hi[s] = std::max(hi[s], w.bodies().xf[b].p.x());
+  }
+  for (uint32_t s = 0; s < layout.strips; ++s) {
+    // ranks [ceil(s n / K), ceil((s + 1) n / K)): counts differ by at most one
+    EXPECT_LE(count[s], isl.bodyCount / layout.strips + 1) << "strip " << s;
+    EXPECT_GE(count[s], isl.bodyCount / layout.strips) << "strip " << s;
+    if (s > 0) {
+      EXPECT_LE(hi[s - 1], lo[s]) << "strip " << s - 1 << " reaches past strip " << s;
+    }
+  }
+}
+
 TEST(IslandSplit, KeepsTheSolveOrderInsideEachStrip) {
   World w;
   buildPyramid(w, 40, 2);
