@@ -65,28 +65,25 @@ std::string threadScalingMarkdown(const std::vector<BenchResult>& rows, const st
   for (size_t i = 0; i < threadCounts.size(); ++i) md += "---:|";
   md += "\n";
   for (const std::string& s : scenes) {
-    std::vector<std::string> labels;
+    std::vector<const BenchResult*> setUps;  // the first run of each HAIF set-up, in row order
     for (const BenchResult& r : rows)
-      if (r.scene == s && r.engine == "haif" && std::find(labels.begin(), labels.end(), r.label) == labels.end())
-        labels.push_back(r.label);
-    for (const std::string& label : labels) {
+      if (r.scene == s && r.engine == "haif" && find(rows, s, "haif", r.mode, r.param, 0) == &r) setUps.push_back(&r);
+    for (const BenchResult* setUp : setUps) {
       const BenchResult* base = nullptr;
       std::string cells;
       int found = 0;
       for (int t : threadCounts) {
-        const BenchResult* r = nullptr;
-        for (const BenchResult& q : rows)
-          if (q.scene == s && q.engine == "haif" && q.label == label && q.threads == t) r = &q;
+        const BenchResult* r = find(rows, s, "haif", setUp->mode, setUp->param, t);
         if (r && !base) base = r;
         found += r != nullptr;
         cells += " " + (r ? fmt("%.3f", r->msMedian) : std::string("—"));
-        if (r && base && r != base && r->msMedian > 0.0) {
+        if (r && r != base && r->msMedian > 0.0) {
           const double speedUp = base->msMedian / r->msMedian;
           cells += " (" + fmt("%.2fx", speedUp) + " / " + fmt("%.0f%%", 100.0 * speedUp * base->threads / t) + ")";
         }
         cells += " |";
       }
-      if (found > 1) md += "| " + s + " | " + label + " |" + cells + "\n";
+      if (found > 1) md += "| " + s + " | " + setUp->label + " |" + cells + "\n";
     }
   }
   return md;
