@@ -330,13 +330,19 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
 // (reaimForRelax): below it the two lever arms differ by less than the slop's fifth.
 constexpr float kReaimTravel = 1e-3f;
 
-void reaimForRelax(const BodyStore& bodies, const Contact& contact, const SolverParams& p, ContactConstraint& cc) {
-  if (cc.count == 0 || !cc.dynA || !cc.dynB) return;  // one side immovable: its lever does not matter
+bool wantsReaim(const BodyStore& bodies, const SolverParams& p, const ContactConstraint& cc) {
+  if (cc.count == 0 || !cc.dynA || !cc.dynB) return false;  // one side immovable: its lever does not matter
   const Vec3 moveA = p.dt * bodies.v[cc.a], moveB = p.dt * bodies.v[cc.b];
-  if ((moveB - moveA).squaredNorm() < kReaimTravel * kReaimTravel) return;
+  if ((moveB - moveA).squaredNorm() < kReaimTravel * kReaimTravel) return false;
   // A pair pushed apart (overlapping beyond the slop) moves by its push-out, not by a collision.
   for (int i = 0; i < cc.count; ++i)
-    if (cc.bias[i] < 0.0f) return;
+    if (cc.bias[i] < 0.0f) return false;
+  return true;
+}
+
+void reaimForRelax(const BodyStore& bodies, const Contact& contact, const SolverParams& p, ContactConstraint& cc) {
+  if (!wantsReaim(bodies, p, cc)) return;
+  const Vec3 moveA = p.dt * bodies.v[cc.a], moveB = p.dt * bodies.v[cc.b];
   const Vec3 shift = 0.5f * (moveA + moveB);
   alignas(16) float normal[kMaxManifoldPoints], bias[kMaxManifoldPoints], bounce[kMaxManifoldPoints], friction[4],
       frictionBias[4];

@@ -154,6 +154,9 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
 /// point, the old one moved by the mean of the two bodies' moves; impulses and biases are kept.
 /// Pairs being pushed apart (a point beyond the slop) are left as they are.
 void reaimForRelax(const BodyStore& bodies, const Contact& contact, const SolverParams& p, ContactConstraint& cc);
+/// Whether reaimForRelax would build cc's rows again (it reads no impulse, so a packed copy's rows
+/// need not be unpacked to ask).
+bool wantsReaim(const BodyStore& bodies, const SolverParams& p, const ContactConstraint& cc);
 
 /// Applies the accumulated (warm-start) impulses of the constraints to the body velocities.
 void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n);

@@ -390,6 +390,25 @@ void unpackLanes(ContactConstraint* cs, size_t n, const LaneBatches& lb) {
     if (lb.wideOf[j] >= 0) unpackWideImpulses(lb.wide[lb.wideOf[j]], cs + j);
 }
 
+void reaimLanesForRelax(const BodyStore& bodies, const Contact* contacts, const SolverParams& p,
+                        ContactConstraint* cs, size_t n, const LaneBatches& lb) {
+  for (size_t j = 0; j < n; j += lb.run[j]) {
+    ContactConstraint* rows = cs + j;
+    const size_t run = lb.run[j];
+    if (lb.wideOf[j] < 0) {
+      for (size_t i = 0; i < run; ++i) reaimForRelax(bodies, contacts[rows[i].contact], p, rows[i]);
+      continue;
+    }
+    bool any = false;
+    for (size_t i = 0; i < run && !any; ++i) any = wantsReaim(bodies, p, rows[i]);
+    if (!any) continue;  // a resting batch: its packed rows stand
+    WideContactBatch& batch = lb.wide[lb.wideOf[j]];
+    unpackWideImpulses(batch, rows);
+    for (size_t i = 0; i < run; ++i) reaimForRelax(bodies, contacts[rows[i].contact], p, rows[i]);
+    packWide(rows, run, batch);
+  }
+}
+
 SweepResult solveIterationLanes(BodyStore& bodies, ContactConstraint* cs, size_t n, const LaneBatches& lb,
                                 float omega, bool useBias) {
   SweepResult total;

@@ -88,5 +88,9 @@ SweepResult solveIterationLanes(BodyStore& bodies, ContactConstraint* cs, size_t
 void startDirectionLanes(ContactConstraint* cs, size_t n, const LaneBatches& lb);
 void accelerateLanes(BodyStore& bodies, ContactConstraint* cs, size_t n, const LaneBatches& lb, float beta);
 void unpackLanes(ContactConstraint* cs, size_t n, const LaneBatches& lb);
+/// reaimForRelax over such a range (`contacts` indexed by each row's contact): a batch with a row to
+/// re-aim has its impulses taken out, its rows built again and the batch packed again.
+void reaimLanesForRelax(const BodyStore& bodies, const Contact* contacts, const SolverParams& p,
+                        ContactConstraint* cs, size_t n, const LaneBatches& lb);
 
 }  // namespace haif

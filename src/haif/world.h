@@ -193,6 +193,9 @@ class World {
   std::vector<int32_t> wideOf_;   // per contact slot starting a batch: its wide_ index, or -1 (scalar)
   std::vector<WideContactBatch> wide_;  // packed rows of this step's wide batches (grows, then reused)
   LaneBatches lanesOf(uint32_t island);
+  /// Copy island k's rows into its lane batches (all of each row), or their impulses back out.
+  void packIsland(uint32_t island);
+  void unpackIsland(uint32_t island);
   /// Island k's contacts are swept by the wide solver (packed this step).
   bool isWide(uint32_t island) const;
   /// Layers of bodies the island's weight rests through: its height along `up` over its bodies'

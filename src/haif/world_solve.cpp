@@ -74,6 +74,24 @@ LaneBatches World::lanesOf(uint32_t k) {
 
 bool World::isWide(uint32_t k) const { return settings_.wideSolve && !isChain_[k]; }
 
+void World::packIsland(uint32_t k) {
+  const LaneBatches lb = lanesOf(k);
+  ContactConstraint* cs = constraints_.data() + islands_.islands[k].firstContact;
+  forEachStrip(k, [&](uint32_t b, uint32_t e) {
+    packLanes(cs + b, e - b, lb.from(b));
+    return SweepResult{};
+  });
+}
+
+void World::unpackIsland(uint32_t k) {
+  const LaneBatches lb = lanesOf(k);
+  ContactConstraint* cs = constraints_.data() + islands_.islands[k].firstContact;
+  forEachStrip(k, [&](uint32_t b, uint32_t e) {
+    unpackLanes(cs + b, e - b, lb.from(b));
+    return SweepResult{};
+  });
+}
+
 void World::solveIslands(int iterations) {
   const SolverParams sp = solverParams();
   const float tol = settings_.residualTolerance;
@@ -97,13 +115,7 @@ void World::solveIslands(int iterations) {
       warmStart(bodies_, cs + b, e - b);
       return SweepResult{};
     });
-    if (isWide(k)) {
-      const LaneBatches lb = lanesOf(k);
-      forEachStrip(k, [&](uint32_t b, uint32_t e) {
-        packLanes(cs + b, e - b, lb.from(b));
-        return SweepResult{};
-      });
-    }
+    if (isWide(k)) packIsland(k);
     if (isl.jointCount > 0) prepareJoints(k, sp);
   };
   auto sweepIslandMain = [&](uint32_t k) {
@@ -204,29 +216,32 @@ void World::shareSpareIterations(int iterations) {
 void World::relaxIslands(int relaxIterations) {
   const SolverParams sp = solverParams();
   auto relax = [&](uint32_t k) {
-    // A chain keeps the factors of its rows from the main sweeps, lanes hold packed copies, and a
-    // jointed island's joint rows were built with the stiffened inertia that integration has since
-    // reset (stiffenJointedBodies; re-aimed contact rows next to them gained energy in random
-    // mixed worlds): their rows stay as they were.
-    if (relaxIterations > 0 && !isChain_[k] && !isWide(k) && islands_.islands[k].jointCount == 0) {
+    // A chain keeps the factors of its rows from the main sweeps, and a jointed island's joint rows
+    // were built with the stiffened inertia that integration has since reset (stiffenJointedBodies;
+    // re-aimed contact rows next to them gained energy in random mixed worlds): their rows stay as
+    // they were. Lanes hold packed copies: a batch with a row to re-aim is packed again (left out, a wide
+    // large_pyramid collapsed in 3600 steps at 4 iterations).
+    if (relaxIterations > 0 && !isChain_[k] && islands_.islands[k].jointCount == 0) {
       const Island& isl = islands_.islands[k];
       ContactConstraint* cs = constraints_.data() + isl.firstContact;
-      forEachContactChunk(k, kContactChunk, [&](uint32_t b, uint32_t e) {
-        for (uint32_t j = b; j < e; ++j) reaimForRelax(bodies_, contacts_[cs[j].contact], sp, cs[j]);
-      });
+      if (isWide(k)) {
+        const LaneBatches lb = lanesOf(k);
+        forEachStrip(k, [&](uint32_t b, uint32_t e) {
+          reaimLanesForRelax(bodies_, contacts_.data(), sp, cs + b, e - b, lb.from(b));
+          return SweepResult{};
+        });
+      } else {
+        forEachContactChunk(k, kContactChunk, [&](uint32_t b, uint32_t e) {
+          for (uint32_t j = b; j < e; ++j) reaimForRelax(bodies_, contacts_[cs[j].contact], sp, cs[j]);
+        });
+      }
     }
     for (int it = 0; it < relaxIterations; ++it) sweepIsland(k, false);
   };
   auto store = [&](uint32_t k) {
     const Island& isl = islands_.islands[k];
     ContactConstraint* cs = constraints_.data() + isl.firstContact;
-    if (isWide(k)) {
-      const LaneBatches lb = lanesOf(k);
-      forEachStrip(k, [&](uint32_t b, uint32_t e) {
-        unpackLanes(cs + b, e - b, lb.from(b));
-        return SweepResult{};
-      });
-    }
+    if (isWide(k)) unpackIsland(k);
     forEachContactChunk(k, kContactChunk, [&](uint32_t b, uint32_t e) { storeImpulses(cs + b, e - b, contacts_.data()); });
     if (isl.jointCount > 0) finishJoints(k);
     if (isl.contactCount + isl.jointCount > 0) islandIterations_[k] += relaxIterations;
