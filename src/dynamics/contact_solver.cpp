@@ -47,7 +47,7 @@ inline F4 ontoFrictionCircle(F4 f, float limit) {
   const F4 sq = f * f;
   const float len2 = simd4::lane<0>(sq) + simd4::lane<1>(sq);
   if (!(len2 > limit * limit)) return f;
-  return f * (len2 > 0.0f ? limit / std::sqrt(len2) : 0.0f);
+  return f * frictionCircleScale(len2, limit, [](float x) { return std::sqrt(x); });
 }
 
 // Lanes 0 and 1 of the tangent impulses, lanes 2 and 3 of the twist impulses.

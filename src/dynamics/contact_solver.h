@@ -192,6 +192,15 @@ template <class V>
   return ((bounce < 0.0f) & (impulse > 0.0f)) ? bounce : (bias > 0.0f ? bias : V{});
 }
 
+/// The friction circle, for every width (float, F8): the factor that brings tangent impulses of
+/// squared length `len2` back onto the circle of radius `limit` (μ Σλn), 1 where they lie inside.
+/// Clamping each tangent axis alone (a box) would let friction reach √2 μ λn along a diagonal.
+/// `root` is the square root of that width.
+template <class V, class Root>
+[[gnu::always_inline]] inline V frictionCircleScale(V len2, V limit, Root root) {
+  return len2 > limit * limit ? limit / root(len2) : V{} + 1.0f;
+}
+
 /// A twist impulse held to [−maxTwist, maxTwist] (maxTwist = μ Σλn times the manifold's twist lever),
 /// for every width (F4 lanes, F8), in the sweeps and in the accelerated step.
 template <class V>

@@ -136,9 +136,9 @@ inline void clampToFrictionCircle(F8& n1, F8& n2, F8 limit) {
   const F8 len2 = n1 * n1 + n2 * n2;
   const I8 outside = len2 > limit * limit;
   if (laneMask(outside) == 0) return;
-  const F8 scale = limit / sqrt8(len2);  // len2 > limit² ≥ 0 where it is used
-  n1 = outside ? n1 * scale : n1;
-  n2 = outside ? n2 * scale : n2;
+  const F8 scale = frictionCircleScale(len2, limit, sqrt8);
+  n1 *= scale;
+  n2 *= scale;
 }
 
 }  // namespace
