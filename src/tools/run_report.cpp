@@ -32,20 +32,20 @@ std::string statsCsv(const std::vector<StepStats>& steps) {
       "step,collision_ms,solve_ms,integrate_ms,total_ms,budget_ms,deadline_miss,iterations_chosen,"
       "iterations_min,iterations_mean,iterations_max,row_iterations,residual,solve_error,islands,"
       "largest_island,awake_bodies,sleeping_bodies,contacts,contact_points,new_pairs,stages,joint_error_m,"
-      "joint_error_rad,speed_limited,pinched\n";
+      "joint_error_rad,speed_limited,pinched,turn_projected\n";
   char line[512];
   for (const StepStats& s : steps) {
     char err[32];
     if (std::isnan(s.solveError)) err[0] = '\0';
     else std::snprintf(err, sizeof err, "%.6g", s.solveError);
     std::snprintf(line, sizeof line,
-                  "%llu,%.4f,%.4f,%.4f,%.4f,%.3f,%d,%d,%d,%.3f,%d,%llu,%.6g,%s,%u,%u,%u,%u,%u,%u,%u,%s,%.6g,%.6g,%u,%u\n",
+                  "%llu,%.4f,%.4f,%.4f,%.4f,%.3f,%d,%d,%d,%.3f,%d,%llu,%.6g,%s,%u,%u,%u,%u,%u,%u,%u,%s,%.6g,%.6g,%u,%u,%u\n",
                   (unsigned long long)s.step, s.collisionMs, s.solveMs, s.integrateMs, s.totalMs, s.budgetMs,
                   s.deadlineMiss ? 1 : 0, s.iterationsChosen, s.iterationsMin, s.iterationsMean, s.iterationsMax,
                   (unsigned long long)s.rowIterations, double(s.residual), err, s.islands, s.largestIsland,
                   s.awakeBodies, s.sleepingBodies, s.contacts, s.contactPoints, s.newPairs,
                   stageNames(s.stages).c_str(), double(s.jointErrorM), double(s.jointErrorRad), s.speedLimited,
-                  s.pinchedBodies);
+                  s.pinchedBodies, s.turnProjected);
     out += line;
   }
   return out;
@@ -63,7 +63,7 @@ std::string summaryJson(const RunInfo& info, const std::vector<StepStats>& steps
   std::vector<double> ms;
   ms.reserve(steps.size());
   double misses = 0, itSum = 0, errSum = 0;
-  uint64_t limited = 0, limitedSteps = 0, pinchedSteps = 0;
+  uint64_t limited = 0, limitedSteps = 0, pinchedSteps = 0, turnProjected = 0;
   uint32_t pinchedMax = 0;
   int itMin = steps.empty() ? 0 : 1 << 30, itMax = 0, errCount = 0;
   for (const StepStats& s : steps) {
@@ -72,6 +72,7 @@ std::string summaryJson(const RunInfo& info, const std::vector<StepStats>& steps
     limitedSteps += s.speedLimited > 0 ? 1 : 0;
     pinchedSteps += s.pinchedBodies > 0 ? 1 : 0;
     pinchedMax = std::max(pinchedMax, s.pinchedBodies);
+    turnProjected += s.turnProjected;
     misses += s.deadlineMiss ? 1 : 0;
     itSum += s.iterationsChosen;
     itMin = std::min(itMin, s.iterationsChosen);
@@ -138,6 +139,7 @@ std::string summaryJson(const RunInfo& info, const std::vector<StepStats>& steps
   j["speed_limited_steps"] = limitedSteps;
   j["pinched_steps"] = pinchedSteps;
   j["pinched_max"] = pinchedMax;
+  j["turn_projected"] = turnProjected;
   j["state_hash"] = hashText(info.stateHash);
   if (info.renderMsPerFrameMedian >= 0) j["render_ms_per_frame_median"] = info.renderMsPerFrameMedian;
   if (!info.renderPhaseMsMedian.empty()) {

@@ -1,0 +1,115 @@
+// TurnProjection (haif/turn_projection.h): after the step, the pairs of a body that turned far are
+// collided again and moved apart by their depth past the keep depth, positions only.
+#include "haif/turn_projection.h"
+
+#include <gtest/gtest.h>
+
+namespace haif {
+namespace {
+
+constexpr float kDt = 1.0f / 60.0f;
+
+struct Scene {
+  BodyStore bodies;
+  std::vector<Shape> shapes;
+  std::vector<Contact> contacts;
+  uint32_t add(BodyKind kind, const Shape& shape, const Vec3& p, float mass) {
+    Transform xf;
+    xf.p = p;
+    shapes.push_back(shape);
+    return bodies.add(kind, xf, kind == BodyKind::Dynamic ? mass : 0.0f,
+                      kind == BodyKind::Dynamic ? Mat3(Mat3::Identity() * mass) : Mat3(Mat3::Zero()));
+  }
+  void pair(uint32_t a, uint32_t b) {
+    Contact c;
+    c.a = a;
+    c.b = b;
+    contacts.push_back(c);
+  }
+  uint32_t apply(const TurnProjectionSettings& s = {}) {
+    const std::vector<int32_t> noIsland(bodies.size(), -1);
+    std::vector<ContactEdge> edges(contacts.size());
+    for (size_t i = 0; i < contacts.size(); ++i) edges[i].a = contacts[i].a, edges[i].b = contacts[i].b;
+    return projection.apply(bodies, shapes, contacts, edges.data(), noIsland.data(), IslandSet{}, Vec3::UnitY(), kDt, s);
+  }
+  TurnProjection projection;
+};
+
+// A spinning box 0.1 m into the ground: it is lifted by 0.1 m less the keep depth, and its
+// velocities stay as they were.
+TEST(TurnProjection, LiftsATurnedBoxOutOfTheGroundToTheKeepDepth) {
+  Scene s;
+  const uint32_t ground = s.add(BodyKind::Static, Shape::box(Vec3(10, 0.5f, 10)), Vec3(0, -0.5f, 0), 0);
+  const uint32_t box = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0, 0.4f, 0), 2);
+  s.pair(ground, box);
+  s.bodies.w[box] = Vec3(0, 0, 12.0f);  // 0.2 rad a step
+  s.bodies.v[box] = Vec3(1, -2, 0);
+  EXPECT_EQ(s.apply(), 1u);
+  const TurnProjectionSettings d;
+  EXPECT_NEAR(s.bodies.xf[box].p.y(), 0.5f - d.keep, 1e-4f);
+  EXPECT_NEAR(s.bodies.xf[box].p.x(), 0.0f, 1e-6f);
+  EXPECT_EQ(s.bodies.v[box], Vec3(1, -2, 0));
+  EXPECT_EQ(s.bodies.w[box], Vec3(0, 0, 12.0f));
+  EXPECT_EQ(s.bodies.xf[ground].p, Vec3(0, -0.5f, 0));
+}
+
+// Below the angle nothing is collided again (the solver's push-out handles a slow body), a sphere
+// turns without moving its surface, and depth within the keep depth is left.
+TEST(TurnProjection, LeavesSlowBodiesSpheresAndShallowPairsAlone) {
+  Scene s;
+  const uint32_t ground = s.add(BodyKind::Static, Shape::box(Vec3(10, 0.5f, 10)), Vec3(0, -0.5f, 0), 0);
+  const uint32_t slow = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0, 0.4f, 0), 1);
+  const uint32_t ball = s.add(BodyKind::Dynamic, Shape::sphere(0.5f), Vec3(3, 0.4f, 0), 1);
+  const uint32_t shallow = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(-3, 0.495f, 0), 1);
+  for (uint32_t b : {slow, ball, shallow}) s.pair(ground, b);
+  s.bodies.w[slow] = Vec3(0, 0, 5.0f);  // 0.083 rad a step, under 0.1
+  s.bodies.w[ball] = Vec3(0, 0, 30.0f);
+  s.bodies.w[shallow] = Vec3(0, 0, 30.0f);
+  EXPECT_EQ(s.apply(), 0u);
+  EXPECT_EQ(s.bodies.xf[slow].p.y(), 0.4f);
+  EXPECT_EQ(s.bodies.xf[ball].p.y(), 0.4f);
+  EXPECT_EQ(s.bodies.xf[shallow].p.y(), 0.495f);
+  TurnProjectionSettings off;
+  off.angle = 0.0f;
+  s.bodies.w[slow] = Vec3(0, 0, 50.0f);
+  EXPECT_EQ(s.apply(off), 0u);
+  EXPECT_EQ(s.bodies.xf[slow].p.y(), 0.4f);
+}
+
+// A heavy turned box sunk into a light one that rests on the ground: the lower pair is settled
+// first and the heavy one moves up, instead of the light one being driven into the ground.
+TEST(TurnProjection, MovesTheUpperBodyOfAStackedPair) {
+  Scene s;
+  const uint32_t ground = s.add(BodyKind::Static, Shape::box(Vec3(10, 0.5f, 10)), Vec3(0, -0.5f, 0), 0);
+  const uint32_t light = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0, 0.5f, 0), 1);
+  const uint32_t heavy = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0, 1.3f, 0), 100);
+  s.pair(light, heavy);  // listed first: the height order, not the list order, decides
+  s.pair(ground, light);
+  s.bodies.w[heavy] = Vec3(20.0f, 0, 0);
+  s.bodies.w[light] = Vec3(20.0f, 0, 0);
+  EXPECT_EQ(s.apply(), 1u);  // the light box touches the ground without overlap
+  const TurnProjectionSettings d;
+  EXPECT_EQ(s.bodies.xf[light].p.y(), 0.5f);
+  EXPECT_NEAR(s.bodies.xf[heavy].p.y(), 1.5f - d.keep, 1e-4f);
+}
+
+// A turned box lifted out of the ground lifts the box on it, which then sits in the box above that
+// (a pair of two bodies that did not turn): the next round takes it. Each pair keeps 1 cm.
+TEST(TurnProjection, ABodyItMovedBringsItsPairsIntoTheNextRound) {
+  Scene s;
+  const uint32_t ground = s.add(BodyKind::Static, Shape::box(Vec3(10, 0.5f, 10)), Vec3(0, -0.5f, 0), 0);
+  const uint32_t a = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0, 0.4f, 0), 1);
+  const uint32_t b = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0, 1.4f, 0), 1);
+  const uint32_t c = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0, 2.4f, 0), 1);
+  s.pair(b, c);
+  s.pair(a, b);
+  s.pair(ground, a);
+  s.bodies.w[a] = Vec3(0, 20.0f, 0);
+  EXPECT_EQ(s.apply(), 3u);
+  EXPECT_NEAR(s.bodies.xf[a].p.y(), 0.49f, 1e-4f);
+  EXPECT_NEAR(s.bodies.xf[b].p.y(), 1.48f, 1e-4f);
+  EXPECT_NEAR(s.bodies.xf[c].p.y(), 2.47f, 1e-4f);
+}
+
+}  // namespace
+}  // namespace haif
