@@ -15,8 +15,9 @@ constexpr int kRounds = 3;
 
 }  // namespace
 
-uint32_t TurnProjection::apply(BodyStore& bodies, const std::vector<Shape>& shapes, const std::vector<Contact>& contacts,
-                               const ContactEdge* edges, const int32_t* islandOfBody, const IslandSet& islands, const Vec3& up, float dt,
+uint32_t TurnProjection::apply(BodyStore& bodies, const std::vector<Shape>& shapes,
+                               const std::vector<Contact>& contacts, const ContactEdge* edges,
+                               const int32_t* islandOfBody, const IslandSet& islands, const Vec3& up, float dt,
                                const TurnProjectionSettings& settings) {
   if (settings.angle <= 0.0f) return 0;
   const uint32_t n = uint32_t(bodies.size());

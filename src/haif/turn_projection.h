@@ -45,8 +45,8 @@ class TurnProjection {
   /// Reads bodies in index order and pairs in height order, so the result does not depend on
   /// threads. Returns the number of pairs moved apart.
   uint32_t apply(BodyStore& bodies, const std::vector<Shape>& shapes, const std::vector<Contact>& contacts,
-                 const ContactEdge* edges, const int32_t* islandOfBody, const IslandSet& islands, const Vec3& up, float dt,
-                 const TurnProjectionSettings& settings);
+                 const ContactEdge* edges, const int32_t* islandOfBody, const IslandSet& islands, const Vec3& up,
+                 float dt, const TurnProjectionSettings& settings);
 
  private:
   std::vector<uint8_t> active_;  // per body: turned this step (round 1), or moved by the last round

@@ -210,7 +210,8 @@ TEST(Conservation, MomentumThroughACrowdScalarAndWide) {
     const double scale = std::max(p0.norm(), 1.0), scaleL = std::max(L0.norm(), 1.0);
     EXPECT_LT((linearMomentum(w) - p0).norm() / scale, 1e-4) << (wide ? "wide" : "scalar");
     // Scalar and wide (fixed): 4.3e-5 and 4.4e-5; the wide sweep without its rows re-aimed: 2.4e-4.
-    EXPECT_LT((totalL() - L0).norm() / scaleL, 1e-4) << (wide ? "wide" : "scalar") << ": " << totalL().transpose() << " vs " << L0.transpose();
+    EXPECT_LT((totalL() - L0).norm() / scaleL, 1e-4)
+        << (wide ? "wide" : "scalar") << ": " << totalL().transpose() << " vs " << L0.transpose();
   }
 }
 

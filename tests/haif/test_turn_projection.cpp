@@ -30,7 +30,8 @@ struct Scene {
     const std::vector<int32_t> noIsland(bodies.size(), -1);
     std::vector<ContactEdge> edges(contacts.size());
     for (size_t i = 0; i < contacts.size(); ++i) edges[i].a = contacts[i].a, edges[i].b = contacts[i].b;
-    return projection.apply(bodies, shapes, contacts, edges.data(), noIsland.data(), IslandSet{}, Vec3::UnitY(), kDt, s);
+    return projection.apply(bodies, shapes, contacts, edges.data(), noIsland.data(), IslandSet{}, Vec3::UnitY(),
+                            kDt, s);
   }
   TurnProjection projection;
 };
