@@ -189,8 +189,9 @@ void World::step() {
   const auto t3 = Clock::now();
   relaxIslands(relax);
   boundSpeeds();
-  stats_.turnProjected = turnProjection_.apply(bodies_, shapes_, contacts_, contactEdges_.data(), islandOfBody_.data(), islands_,
-                                                upDirection(), dt, settings_.turnProjection);
+  stats_.turnProjected = turnProjection_.apply(bodies_, shapes_, contacts_, contactEdges_.data(),
+                                                islandOfBody_.data(), islands_, upDirection(), dt,
+                                                settings_.turnProjection);
   if (!joints_.empty()) breakJoints();
   const double relaxMs = msSince(t3);
   stats_.solveMs += relaxMs;

@@ -122,6 +122,9 @@ class World {
   /// f(begin, end) over island k's contacts: in chunks of `grain` in parallel for a split (giant)
   /// island, as one range on the calling thread otherwise.
   template <class F> void forEachContactChunk(uint32_t island, uint32_t grain, F&& f);
+  /// f(rows, count, lanes) over each strip of a wide island k (forEachStrip), with the strip's rows
+  /// and its view of the lane batches: packing, unpacking and re-aiming the lanes.
+  template <class F> void forEachLaneRange(uint32_t island, F&& f);
   /// Against gravity (+y without gravity): what top-down order and strips are measured along.
   Vec3 upDirection() const;
   /// `restartDirection`: the island's momentum direction restarts from the last sweep's change
@@ -194,9 +197,6 @@ class World {
   std::vector<int32_t> wideOf_;   // per contact slot starting a batch: its wide_ index, or -1 (scalar)
   std::vector<WideContactBatch> wide_;  // packed rows of this step's wide batches (grows, then reused)
   LaneBatches lanesOf(uint32_t island);
-  /// Copy island k's rows into its lane batches (all of each row), or their impulses back out.
-  void packIsland(uint32_t island);
-  void unpackIsland(uint32_t island);
   /// Island k's contacts are swept by the wide solver (packed this step).
   bool isWide(uint32_t island) const;
   /// Layers of bodies the island's weight rests through: its height along `up` over its bodies'

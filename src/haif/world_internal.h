@@ -130,6 +130,16 @@ SweepResult World::forEachStrip(uint32_t k, F&& f) {
 }
 
 template <class F>
+void World::forEachLaneRange(uint32_t k, F&& f) {
+  const LaneBatches lb = lanesOf(k);
+  ContactConstraint* cs = constraints_.data() + islands_.islands[k].firstContact;
+  forEachStrip(k, [&](uint32_t b, uint32_t e) {
+    f(cs + b, size_t(e - b), lb.from(b));
+    return SweepResult{};
+  });
+}
+
+template <class F>
 void World::forEachContactChunk(uint32_t k, uint32_t grain, F&& f) {
   const uint32_t n = islands_.islands[k].contactCount;
   if (layoutOf_[k] >= 0) parallelFor(n, grain, f);

@@ -74,24 +74,6 @@ LaneBatches World::lanesOf(uint32_t k) {
 
 bool World::isWide(uint32_t k) const { return settings_.wideSolve && !isChain_[k]; }
 
-void World::packIsland(uint32_t k) {
-  const LaneBatches lb = lanesOf(k);
-  ContactConstraint* cs = constraints_.data() + islands_.islands[k].firstContact;
-  forEachStrip(k, [&](uint32_t b, uint32_t e) {
-    packLanes(cs + b, e - b, lb.from(b));
-    return SweepResult{};
-  });
-}
-
-void World::unpackIsland(uint32_t k) {
-  const LaneBatches lb = lanesOf(k);
-  ContactConstraint* cs = constraints_.data() + islands_.islands[k].firstContact;
-  forEachStrip(k, [&](uint32_t b, uint32_t e) {
-    unpackLanes(cs + b, e - b, lb.from(b));
-    return SweepResult{};
-  });
-}
-
 void World::solveIslands(int iterations) {
   const SolverParams sp = solverParams();
   const float tol = settings_.residualTolerance;
@@ -115,7 +97,7 @@ void World::solveIslands(int iterations) {
       warmStart(bodies_, cs + b, e - b);
       return SweepResult{};
     });
-    if (isWide(k)) packIsland(k);
+    if (isWide(k)) forEachLaneRange(k, packLanes);
     if (isl.jointCount > 0) prepareJoints(k, sp);
   };
   auto sweepIslandMain = [&](uint32_t k) {
@@ -219,16 +201,14 @@ void World::relaxIslands(int relaxIterations) {
     // A chain keeps the factors of its rows from the main sweeps, and a jointed island's joint rows
     // were built with the stiffened inertia that integration has since reset (stiffenJointedBodies;
     // re-aimed contact rows next to them gained energy in random mixed worlds): their rows stay as
-    // they were. Lanes hold packed copies: a batch with a row to re-aim is packed again (left out, a wide
-    // large_pyramid collapsed in 3600 steps at 4 iterations).
+    // they were. Lanes hold packed copies: a batch with a row to re-aim is packed again (left
+    // out, a wide large_pyramid collapsed in 3600 steps at 4 iterations).
     if (relaxIterations > 0 && !isChain_[k] && islands_.islands[k].jointCount == 0) {
       const Island& isl = islands_.islands[k];
       ContactConstraint* cs = constraints_.data() + isl.firstContact;
       if (isWide(k)) {
-        const LaneBatches lb = lanesOf(k);
-        forEachStrip(k, [&](uint32_t b, uint32_t e) {
-          reaimLanesForRelax(bodies_, contacts_.data(), sp, cs + b, e - b, lb.from(b));
-          return SweepResult{};
+        forEachLaneRange(k, [&](ContactConstraint* rows, size_t n, const LaneBatches& lanes) {
+          reaimLanesForRelax(bodies_, contacts_.data(), sp, rows, n, lanes);
         });
       } else {
         forEachContactChunk(k, kContactChunk, [&](uint32_t b, uint32_t e) {
@@ -241,7 +221,7 @@ void World::relaxIslands(int relaxIterations) {
   auto store = [&](uint32_t k) {
     const Island& isl = islands_.islands[k];
     ContactConstraint* cs = constraints_.data() + isl.firstContact;
-    if (isWide(k)) unpackIsland(k);
+    if (isWide(k)) forEachLaneRange(k, unpackLanes);
     forEachContactChunk(k, kContactChunk, [&](uint32_t b, uint32_t e) { storeImpulses(cs + b, e - b, contacts_.data()); });
     if (isl.jointCount > 0) finishJoints(k);
     if (isl.contactCount + isl.jointCount > 0) islandIterations_[k] += relaxIterations;
