@@ -19,7 +19,7 @@ void BroadPhase::addBody(uint32_t body, const Aabb& tight, bool isStatic) {
 
 bool BroadPhase::update(uint32_t body, const Aabb& tight) {
   const int32_t p = proxy_[body];
-  if (movingTree_.fatAabb(p).contains(tight)) return false;
+  if (movingTree_.fatAabb(p).contains(tight.expanded(keptMargin))) return false;
   if (!movedFlag_[body]) previousFat_[body] = movingTree_.fatAabb(p);
   movingTree_.moveProxy(p, tight.expanded(fatMargin));
   markMoved(body);

@@ -13,8 +13,13 @@ namespace haif {
 
 class BroadPhase {
  public:
-  /// Margin added around a tight box: bodies may move this far before they are re-inserted.
+  /// Margin added around a tight box when a body is (re-)inserted.
   float fatMargin = 0.1f;
+  /// Margin a body's box keeps inside its fat box before it is re-inserted: every pair within it
+  /// of each other exists. A body struck within the step moves past its swept box (a hull falling
+  /// at 3.6 m/s, hit from above, left at 9 m/s); with no margin it met the ground it was 7 cm over
+  /// with no pair, and sank 7.6 cm into it.
+  float keptMargin = 0.05f;
 
   void addBody(uint32_t body, const Aabb& tight, bool isStatic);
   /// Updates a moving body's box; returns true when the body left its fat box (re-inserted).
