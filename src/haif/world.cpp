@@ -191,7 +191,7 @@ void World::step() {
   boundSpeeds();
   stats_.turnProjected = turnProjection_.apply(bodies_, shapes_, contacts_, contactEdges_.data(),
                                                 islandOfBody_.data(), islands_, upDirection(), dt,
-                                                settings_.turnProjection);
+                                                settings_.contactMargin, settings_.turnProjection);
   if (!joints_.empty()) breakJoints();
   const double relaxMs = msSince(t3);
   stats_.solveMs += relaxMs;

@@ -26,12 +26,19 @@ struct Scene {
     c.b = b;
     contacts.push_back(c);
   }
+  // A pair whose narrow phase, at the step's start, found one point `depth` deep at `at`.
+  void pairAt(uint32_t a, uint32_t b, const Vec3& at, const Vec3& normal, float depth) {
+    pair(a, b);
+    Manifold& m = contacts.back().manifold;
+    m.count = 1;
+    m.points[0] = ContactPoint{at, normal, depth, 0};
+  }
   uint32_t apply(const TurnProjectionSettings& s = {}) {
     const std::vector<int32_t> noIsland(bodies.size(), -1);
     std::vector<ContactEdge> edges(contacts.size());
     for (size_t i = 0; i < contacts.size(); ++i) edges[i].a = contacts[i].a, edges[i].b = contacts[i].b;
     return projection.apply(bodies, shapes, contacts, edges.data(), noIsland.data(), IslandSet{}, Vec3::UnitY(),
-                            kDt, s);
+                            kDt, 0.02f, s);
   }
   TurnProjection projection;
 };
@@ -110,6 +117,70 @@ TEST(TurnProjection, ABodyItMovedBringsItsPairsIntoTheNextRound) {
   EXPECT_NEAR(s.bodies.xf[a].p.y(), 0.49f, 1e-4f);
   EXPECT_NEAR(s.bodies.xf[b].p.y(), 1.48f, 1e-4f);
   EXPECT_NEAR(s.bodies.xf[c].p.y(), 2.47f, 1e-4f);
+}
+
+// A 100 kg ball landing on a 1 kg box that rests on the ground: ten Gauss-Seidel sweeps pass the
+// box's support up a fraction m/(m+M) at a time, so the ball goes on sinking. It began the step 5 cm
+// in and ended 10 cm in, still falling, without turning: the 5 cm the step added go, and 2 cm of
+// the depth it began with; only the upper body moves, and no velocity changes.
+TEST(TurnProjection, PushesAHeavyBallSinkingIntoALightBoxBackByWhatTheStepAdded) {
+  Scene s;
+  const uint32_t ground = s.add(BodyKind::Static, Shape::box(Vec3(10, 0.5f, 10)), Vec3(0, -0.5f, 0), 0);
+  const uint32_t box = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0, 0.5f, 0), 1);
+  const uint32_t ball = s.add(BodyKind::Dynamic, Shape::sphere(0.5f), Vec3(0, 1.4f, 0), 100);
+  s.pair(ground, box);
+  s.pairAt(box, ball, Vec3(0, 0.975f, 0), Vec3::UnitY(), 0.05f);
+  s.bodies.v[ball] = Vec3(0, -3.0f, 0);
+  EXPECT_EQ(s.apply(), 1u);
+  const TurnProjectionSettings d;
+  EXPECT_NEAR(s.bodies.xf[ball].p.y(), 1.4f + 0.05f + d.crushRecover, 1e-4f);
+  EXPECT_EQ(s.bodies.xf[box].p.y(), 0.5f);
+  EXPECT_EQ(s.bodies.v[ball], Vec3(0, -3.0f, 0));
+  // Off: left to the solver.
+  s.bodies.xf[ball].p.y() = 1.4f;
+  TurnProjectionSettings off;
+  off.crushKeep = 0.0f;
+  EXPECT_EQ(s.apply(off), 0u);
+  EXPECT_EQ(s.bodies.xf[ball].p.y(), 1.4f);
+}
+
+// Two balls 8 cm into each other with no point between them: at the step's start they were apart
+// by more than they closed, and a blow within the step drove them together at 10 m/s. Their final
+// boxes overlap, so they are collided again and moved apart to the keep depth, by inverse mass.
+// Closing at 0.5 m/s (under the narrow phase's margin a step) they are the solver's.
+TEST(TurnProjection, CollidesAgainAPairStruckTogetherWithinTheStep) {
+  for (const float closing : {10.0f, 0.5f}) {
+    Scene s;
+    const uint32_t a = s.add(BodyKind::Dynamic, Shape::sphere(0.5f), Vec3(0, 1, 0), 1);
+    const uint32_t b = s.add(BodyKind::Dynamic, Shape::sphere(0.5f), Vec3(0.92f, 1, 0), 1);
+    s.pair(a, b);
+    s.bodies.v[a] = Vec3(closing, 0, 0);
+    const TurnProjectionSettings d;
+    if (closing > 1.0f) {
+      EXPECT_EQ(s.apply(), 1u);
+      EXPECT_NEAR(s.bodies.xf[b].p.x() - s.bodies.xf[a].p.x(), 1.0f - d.keep, 1e-4f);
+      EXPECT_NEAR(s.bodies.xf[a].p.x() + s.bodies.xf[b].p.x(), 0.92f, 1e-5f);  // equal masses: equal shares
+    } else {
+      EXPECT_EQ(s.apply(), 0u);
+      EXPECT_EQ(s.bodies.xf[b].p.x(), 0.92f);
+    }
+  }
+}
+
+// Bodies that began the step half a metre into each other (spawned so) and did not go deeper are
+// brought apart by crushRecover a step, not in one jump: a jump pushed one of them 0.38 m into the
+// ground in a random world.
+TEST(TurnProjection, AnOldDeepOverlapComesApartByABoundedStep) {
+  Scene s;
+  const uint32_t a = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0, 1, 0), 1);
+  const uint32_t b = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0.5f, 1, 0), 1);
+  s.pairAt(a, b, Vec3(0.25f, 1, 0), Vec3::UnitX(), 0.5f);
+  const TurnProjectionSettings d;
+  for (int step = 1; step <= 3; ++step) {
+    s.contacts[0].manifold.points[0].depth = 1.0f - (s.bodies.xf[b].p.x() - s.bodies.xf[a].p.x());  // the next narrow phase
+    EXPECT_EQ(s.apply(), 1u);
+    EXPECT_NEAR(s.bodies.xf[b].p.x() - s.bodies.xf[a].p.x(), 0.5f + float(step) * d.crushRecover, 1e-4f);
+  }
 }
 
 }  // namespace
