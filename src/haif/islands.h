@@ -22,7 +22,8 @@ struct Island {
 /// itself is ~0.5 KB, and passes over those were most of the island stage's time.
 struct ContactEdge {
   uint32_t a = 0, b = 0;  ///< body ids
-  uint32_t count = 0;     ///< manifold points (0: not touching)
+  float deepest = 0.0f;   ///< depth of the deepest point (m; 0 when none overlaps)
+  uint8_t count = 0;      ///< manifold points (0: not touching)
   bool unloaded = true;   ///< every point's normal impulse is zero (nothing to warm start from)
   /// Overlapping, between an awake dynamic body and a static or kinematic one (haif/pinch.h).
   bool pressedByImmovable = false;

@@ -46,6 +46,7 @@ class SpeedBound {
   float limit() const { return limit_; }
   /// A body's bounding radius about its centre of mass (0 for planes and meshes).
   float reach(uint32_t body) const { return reach_[body]; }
+  const float* reaches() const { return reach_.data(); }
 
   SpeedBoundSettings settings;
 

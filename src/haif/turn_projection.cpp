@@ -21,8 +21,9 @@ constexpr float kLeastMove = 1e-4f;
 
 uint32_t TurnProjection::apply(BodyStore& bodies, const std::vector<Shape>& shapes,
                                const std::vector<Contact>& contacts, const ContactEdge* edges,
-                               const int32_t* islandOfBody, const IslandSet& islands, const Vec3& up, float dt,
-                               float contactMargin, const TurnProjectionSettings& settings) {
+                               const int32_t* islandOfBody, const IslandSet& islands, const Vec3& up,
+                               const float* reach, float dt, float contactMargin,
+                               const TurnProjectionSettings& settings) {
   if (settings.angle <= 0.0f) return 0;
   const uint32_t n = uint32_t(bodies.size());
   const uint32_t pairCount = uint32_t(contacts.size());
@@ -41,16 +42,23 @@ uint32_t TurnProjection::apply(BodyStore& bodies, const std::vector<Shape>& shap
   // bounded amount a step, as the solver's own push-out would (bodies spawned a metre into each
   // other were thrown apart in one step, one of them 0.38 m into the ground).
   auto target = [&](uint32_t c) {
-    const float start = contacts[c].manifold.deepest();
+    const float start = edges[c].deepest;
     return std::max(std::max(settings.keep, std::min(start, settings.crushKeep)), start - settings.crushRecover);
   };
   // Pairs driven into each other without a turn: each point's depth at the end of the step, read
   // linearly from its depth at the start and the bodies' final velocities.
   crushed_.assign(pairCount, 0);
   if (settings.crushKeep > 0.0f) {
+    // A bound from the packed edges and velocities first: a resting pile's pairs (most pairs of
+    // most steps) end where they began, and their contacts, which are large, are not read.
+    motion_.resize(n);
+    for (uint32_t i = 0; i < n; ++i) motion_[i] = bodies.v[i].norm() + bodies.w[i].norm() * reach[i];
     for (uint32_t c = 0; c < pairCount; ++c) {
+      const ContactEdge& e = edges[c];
+      if (!bodies.isAwakeDynamic(e.a) && !bodies.isAwakeDynamic(e.b)) continue;
+      const float closing = dt * (motion_[e.a] + motion_[e.b]);
+      if (e.count == 0 ? closing <= contactMargin : e.deepest + closing <= target(c) + kCrushSlack) continue;
       const Contact& k = contacts[c];
-      if (!bodies.isAwakeDynamic(k.a) && !bodies.isAwakeDynamic(k.b)) continue;
       const Vec3 va = bodies.v[k.a], vb = bodies.v[k.b], wa = bodies.w[k.a], wb = bodies.w[k.b];
       if (k.manifold.count == 0) {
         // No point: the pair was farther apart than it closed at the step's start. A body struck

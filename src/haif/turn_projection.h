@@ -55,15 +55,17 @@ class TurnProjection {
  public:
   /// Applies the stage to the contacts (all narrow-phase pairs of this step, their manifolds from
   /// the step's start, and `edges`, their ContactEdge per contact) with the bodies' final poses;
-  /// `islandOfBody` and `islands` are the step's; `contactMargin` is the narrow phase's base margin.
+  /// `islandOfBody` and `islands` are the step's, `reach` each body's bounding radius about its
+  /// centre, `contactMargin` the narrow phase's base margin.
   /// Reads bodies in index order and pairs in height order, so the result does not depend on
   /// threads. Returns the number of pairs moved apart.
   uint32_t apply(BodyStore& bodies, const std::vector<Shape>& shapes, const std::vector<Contact>& contacts,
                  const ContactEdge* edges, const int32_t* islandOfBody, const IslandSet& islands, const Vec3& up,
-                 float dt, float contactMargin, const TurnProjectionSettings& settings);
+                 const float* reach, float dt, float contactMargin, const TurnProjectionSettings& settings);
 
  private:
   std::vector<uint8_t> active_;  // per body: turned this step (round 1), or moved by the last round
+  std::vector<float> motion_;     // per body: |v| + |w| reach, the fastest any point of it moves
   std::vector<uint8_t> crushed_;  // per contact: driven deeper than its target by the step's velocities
   std::vector<uint8_t> held_;    // per body: touches a kinematic body
   std::vector<std::pair<float, uint32_t>> pairs_;  // (height, contact) of the pairs to collide again

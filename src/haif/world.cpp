@@ -190,8 +190,8 @@ void World::step() {
   relaxIslands(relax);
   boundSpeeds();
   stats_.turnProjected = turnProjection_.apply(bodies_, shapes_, contacts_, contactEdges_.data(),
-                                                islandOfBody_.data(), islands_, upDirection(), dt,
-                                                settings_.contactMargin, settings_.turnProjection);
+                                                islandOfBody_.data(), islands_, upDirection(), speedBound_.reaches(),
+                                                dt, settings_.contactMargin, settings_.turnProjection);
   if (!joints_.empty()) breakJoints();
   const double relaxMs = msSince(t3);
   stats_.solveMs += relaxMs;

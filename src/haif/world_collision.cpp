@@ -78,8 +78,9 @@ namespace {
 
 // What the stages after the narrow phase need of a contact, copied while it is in cache.
 inline void noteEdge(const Contact& c, ContactEdge& edge, bool againstImmovable) {
-  edge.count = uint32_t(c.manifold.count);
-  edge.overlapping = c.manifold.count > 0 && c.manifold.deepest() > 0.0f;
+  edge.count = uint8_t(c.manifold.count);
+  edge.deepest = c.manifold.deepest();
+  edge.overlapping = edge.deepest > 0.0f;
   edge.pressedByImmovable = againstImmovable && edge.overlapping;
   bool unloaded = true;
   for (int i = 0; i < c.manifold.count; ++i) unloaded &= c.normalImpulse[i] == 0.0f;

@@ -36,9 +36,19 @@ struct Scene {
   uint32_t apply(const TurnProjectionSettings& s = {}) {
     const std::vector<int32_t> noIsland(bodies.size(), -1);
     std::vector<ContactEdge> edges(contacts.size());
-    for (size_t i = 0; i < contacts.size(); ++i) edges[i].a = contacts[i].a, edges[i].b = contacts[i].b;
+    std::vector<float> reach(bodies.size());
+    for (size_t i = 0; i < contacts.size(); ++i) {
+      ContactEdge& e = edges[i];
+      e.a = contacts[i].a, e.b = contacts[i].b;
+      e.count = uint8_t(contacts[i].manifold.count);  // as the narrow phase notes them
+      e.deepest = contacts[i].manifold.deepest();
+    }
+    for (size_t i = 0; i < bodies.size(); ++i) {
+      const Aabb box = computeAabb(shapes[i], Transform{});
+      reach[i] = bodies.isDynamic(uint32_t(i)) ? 0.5f * (box.hi - box.lo).norm() : 0.0f;
+    }
     return projection.apply(bodies, shapes, contacts, edges.data(), noIsland.data(), IslandSet{}, Vec3::UnitY(),
-                            kDt, 0.02f, s);
+                            reach.data(), kDt, 0.02f, s);
   }
   TurnProjection projection;
 };
