@@ -1,6 +1,7 @@
 // Poured piles: bodies dropped from 10-14 m into a small pit land at 14-16 m/s. The deepest
 // contacts of a pour came from bodies that picked up a fast spin within a step and turned corners
-// (or a capsule's length) into what they landed on (haif/turn_projection.h).
+// (or a capsule's length) into what they landed on, from heavy bodies crushing light ones, and from
+// pairs struck together within a step (haif/turn_projection.h).
 #include "scene_test_util.h"
 
 #include "haif/world.h"
@@ -44,14 +45,29 @@ float deepestContact(const char* shape, float turnAngle) {
   return deepest;
 }
 
-// Capsules land on one point and turn on it: 0.25 m deep without the stage, 0.078 with it.
+// The issue's bound for poured piles at fixed 10 is 5 cm. Capsules land on one point and turn on
+// it: 0.25 m deep without the stage, 0.017 with it.
 TEST(PouredPiles, CapsulesLandWithoutTurningIntoEachOther) {
-  EXPECT_LT(deepestContact("capsule", TurnProjectionSettings{}.angle), 0.1f);
+  EXPECT_LT(deepestContact("capsule", TurnProjectionSettings{}.angle), 0.05f);
 }
 
-// Hulls landing on an edge spin up within the step: 0.142 m deep without the stage, 0.053 with it.
+// Hulls landing on an edge spin up within the step: 0.153 m deep without the stage, 0.022 with it.
 TEST(PouredPiles, HullsLandWithoutTurningIntoEachOther) {
-  EXPECT_LT(deepestContact("hull", TurnProjectionSettings{}.angle), 0.08f);
+  EXPECT_LT(deepestContact("hull", TurnProjectionSettings{}.angle), 0.05f);
+}
+
+// Boxes: 0.122 m without the stage (and 0.27 m in a 2000-box pour before the narrow phase kept
+// overlaps at wide margins), 0.025 with it.
+TEST(PouredPiles, BoxesLandWithoutSinkingIntoEachOther) {
+  EXPECT_LT(deepestContact("box", TurnProjectionSettings{}.angle), 0.05f);
+}
+
+// Every shape at once: heavy balls land on light boxes that rest on the ground and crush them
+// (Gauss-Seidel passes the support up a fraction m/(m+M) a sweep). 0.213 m without the stage,
+// 0.018 with it.
+TEST(PouredPiles, MixedShapesLandWithoutCrushingIntoEachOther) {
+  EXPECT_LT(deepestContact(R"(sphere", "box", "capsule", "hull)", TurnProjectionSettings{}.angle), 0.05f);
+  EXPECT_GT(deepestContact(R"(sphere", "box", "capsule", "hull)", 0.0f), 0.1f) << "the control should sink in";
 }
 
 }  // namespace
