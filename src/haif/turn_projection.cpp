@@ -95,6 +95,11 @@ uint32_t TurnProjection::apply(BodyStore& bodies, const std::vector<Shape>& shap
   auto movable = [&](uint32_t i) { return bodies.isAwakeDynamic(i) && !jointed(i) && !held_[i]; };
   for (uint32_t i = 0; i < n; ++i) active_[i] &= uint8_t(!held_[i]);
   uint32_t moved = 0;
+  // Moves are numbered; a pair is collided again only when one of its bodies moved after it was
+  // last collided (a pair taken after its body moved, later in the same round, is where it was).
+  movedAt_.assign(n, 0);
+  collidedAt_.assign(pairCount, 0);
+  uint32_t clock = 1;
   Manifold m;
   // Round 1 takes the pairs of the turned bodies; each later round those of the bodies the round
   // before moved (a box lifted out of a ball under it may now sit in the ball above it).
@@ -103,6 +108,7 @@ uint32_t TurnProjection::apply(BodyStore& bodies, const std::vector<Shape>& shap
     for (uint32_t c = 0; c < pairCount; ++c) {
       const ContactEdge& k = edges[c];
       if (!(active_[k.a] || active_[k.b] || (round == 0 && crushed_[c]))) continue;
+      if (collidedAt_[c] != 0 && std::max(movedAt_[k.a], movedAt_[k.b]) < collidedAt_[c]) continue;
       if (bodies.kind[k.a] == BodyKind::Kinematic || bodies.kind[k.b] == BodyKind::Kinematic) continue;
       if (jointed(k.a) || jointed(k.b)) continue;
       pairs_.emplace_back(up.dot(bodies.xf[k.a].p + bodies.xf[k.b].p), c);
@@ -112,6 +118,7 @@ uint32_t TurnProjection::apply(BodyStore& bodies, const std::vector<Shape>& shap
     any = false;
     for (const auto& [height, c] : pairs_) {
       const ContactEdge& k = edges[c];
+      collidedAt_[c] = clock;
       if (collide(shapes[k.a], bodies.xf[k.a], shapes[k.b], bodies.xf[k.b], 0.0f, m) == 0) continue;
       int deepest = 0;
       for (int i = 1; i < m.count; ++i)
@@ -129,8 +136,10 @@ uint32_t TurnProjection::apply(BodyStore& bodies, const std::vector<Shape>& shap
       if (along < -kStacked && ia > 0.0f) ib = 0.0f;
       if (ia + ib <= 0.0f) continue;
       const float share = excess / (ia + ib);
-      if (ia > 0.0f) bodies.xf[k.a].p -= (share * ia) * normal, active_[k.a] = 1, any = true;
-      if (ib > 0.0f) bodies.xf[k.b].p += (share * ib) * normal, active_[k.b] = 1, any = true;
+      ++clock;
+      if (ia > 0.0f) bodies.xf[k.a].p -= (share * ia) * normal, active_[k.a] = 1, movedAt_[k.a] = clock, any = true;
+      if (ib > 0.0f) bodies.xf[k.b].p += (share * ib) * normal, active_[k.b] = 1, movedAt_[k.b] = clock, any = true;
+      ++clock;
       ++moved;
     }
   }
