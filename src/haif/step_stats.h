@@ -37,7 +37,7 @@ struct StepStats {
   float jointErrorM = 0;          ///< largest joint anchor error after the step (m); 0 without joints
   float jointErrorRad = 0;        ///< largest joint angular error after the step (rad)
   uint32_t pinchedBodies = 0;     ///< dynamic bodies pressed from opposite sides by static or kinematic ones (haif/pinch.h)
-  uint32_t turnProjected = 0;     ///< pairs a fast turn carried into each other, moved apart after the step (haif/turn_projection.h)
+  uint32_t turnProjected = 0;     ///< pairs a fast turn, a crush or a blow carried into each other, moved apart after the step (haif/turn_projection.h)
   uint32_t speedLimited = 0;      ///< times a body was slowed to the speed bound this step (haif/speed_bound.h)
 };
 

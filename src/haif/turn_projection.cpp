@@ -123,9 +123,9 @@ uint32_t TurnProjection::apply(BodyStore& bodies, const std::vector<Shape>& shap
       int deepest = 0;
       for (int i = 1; i < m.count; ++i)
         if (m.points[i].depth > m.points[deepest].depth) deepest = i;
-      if (!(m.points[deepest].depth > settings.keep)) continue;  // the usual case: read no contact
+      // The target is never under `keep`; a pair a later round finds where the last one left it stays.
       const float excess = m.points[deepest].depth - target(c);
-      if (!(excess > kLeastMove)) continue;  // a later round finds the pair where the last one left it
+      if (!(excess > kLeastMove)) continue;
       const Vec3 normal = m.points[deepest].normal;  // from a to b
       float ia = movable(k.a) ? bodies.invMass[k.a] : 0.0f;
       float ib = movable(k.b) ? bodies.invMass[k.b] : 0.0f;

@@ -67,9 +67,9 @@ class TurnProjection {
   std::vector<uint8_t> active_;  // per body: turned this step (round 1), or moved by the last round
   std::vector<float> motion_;     // per body: |v| + |w| reach, the fastest any point of it moves
   std::vector<uint8_t> crushed_;  // per contact: driven deeper than its target by the step's velocities
-  std::vector<uint8_t> held_;
+  std::vector<uint8_t> held_;     // per body: touches a kinematic body, or pinched: not moved
   std::vector<uint32_t> movedAt_;     // per body: the move clock when it last moved (0: not this step)
-  std::vector<uint32_t> collidedAt_;  // per contact: the move clock when it was last collided again    // per body: touches a kinematic body
+  std::vector<uint32_t> collidedAt_;  // per contact: the move clock when it was last collided again
   std::vector<std::pair<float, uint32_t>> pairs_;  // (height, contact) of the pairs to collide again
 };
 

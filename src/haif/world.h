@@ -170,7 +170,7 @@ class World {
   std::vector<ContactEdge> contactEdges_;  // per contact: its bodies and point count, from the narrow phase on
   PinchDetector pinch_;               // marks contacts of bodies pressed between immovable ones
   uint32_t pinchedBodies_ = 0;        // this step's, from pinch_
-  TurnProjection turnProjection_;     // moves apart the pairs a fast turn carried into each other
+  TurnProjection turnProjection_;     // moves apart the pairs the step carried too deep into each other
 
   IslandBuilder islandBuilder_;
   IslandSet islands_;

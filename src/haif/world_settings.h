@@ -35,8 +35,8 @@ struct WorldSettings {
   /// Bodies pressed from opposite sides by static or kinematic ones get no push-out and carry no
   /// impulse between steps, and their static contacts are solved last (haif/pinch.h).
   bool resolvePinches = true;
-  /// After the step, pairs of a body that turned far are collided again and moved apart by any
-  /// depth past `keep` (haif/turn_projection.h).
+  /// After the step, pairs a fast turn, a crush or a blow within the step carried deeper than they
+  /// may keep are collided again and moved apart (haif/turn_projection.h).
   TurnProjectionSettings turnProjection;
   /// Bodies in contact moving slower than this fraction of |g| dt are slowed before their poses move:
   /// the solve's leftover creep in a resting pile (haif/rest_damping.h). 0: off.

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <initializer_list>
+
 namespace haif {
 namespace test {
 
@@ -36,6 +38,26 @@ inline void expectAll(const Manifold& m, const Vec3& n, float depth, float tol =
     expectVecNear(m.points[i].normal, n, tol);
     EXPECT_NEAR(m.points[i].depth, depth, tol);
   }
+}
+
+/// A fast pair gets a wide speculative margin, which must never turn an overlap into a gap:
+/// `collideAt(margin, m)` collides one pair. `overlapping` says whether it is at least 1 cm deep at
+/// margin 0 (else there is nothing to check); the result fails, naming the margin, when it is and
+/// one of `margins` reads no overlap.
+template <class Collide>
+::testing::AssertionResult overlapKeptAtWideMargins(Collide&& collideAt, std::initializer_list<float> margins,
+                                                   bool& overlapping) {
+  Manifold tight;
+  overlapping = collideAt(0.0f, tight) > 0 && tight.deepest() >= 0.01f;
+  if (!overlapping) return ::testing::AssertionSuccess();
+  for (const float margin : margins) {
+    Manifold wide;
+    collideAt(margin, wide);
+    if (!(wide.deepest() > 0.0f))
+      return ::testing::AssertionFailure() << tight.deepest() << " m deep at margin 0, " << wide.count
+                                           << " points and no overlap at margin " << margin;
+  }
+  return ::testing::AssertionSuccess();
 }
 
 /// collide() in both orders: the reversed call must give the same points with flipped normals.
