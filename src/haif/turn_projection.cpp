@@ -3,6 +3,7 @@
 #include "collision/collide.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace haif {
 
@@ -10,140 +11,219 @@ namespace {
 
 /// |n . up| above which a pair is one body resting on the other (within 60 degrees of vertical).
 constexpr float kStacked = 0.5f;
-/// Rounds of pairs: the turned bodies' own, then those of the bodies each round moved.
-constexpr int kRounds = 6;
 /// A pair is collided again when its linear read of the step's end is this much (m) past its target.
 constexpr float kCrushSlack = 0.005f;
 /// Excess depth (m) below which a pair is not moved: rounding after a pair was moved to its target.
 constexpr float kLeastMove = 1e-4f;
 
+/// The deepest point of a pair collided at the bodies' current poses (depth -inf: no point).
+void collideNow(const TurnProjectionInput& in, uint32_t a, uint32_t b, float& depth, Vec3& normal) {
+  const BodyStore& bodies = *in.bodies;
+  const std::vector<Shape>& shapes = *in.shapes;
+  Manifold m;
+  depth = -std::numeric_limits<float>::infinity();
+  if (collide(shapes[a], bodies.xf[a], shapes[b], bodies.xf[b], 0.0f, m) == 0) return;
+  int deepest = 0;
+  for (int i = 1; i < m.count; ++i)
+    if (m.points[i].depth > m.points[deepest].depth) deepest = i;
+  depth = m.points[deepest].depth;
+  normal = m.points[deepest].normal;  // from a to b
+}
+
 }  // namespace
 
-uint32_t TurnProjection::apply(BodyStore& bodies, const std::vector<Shape>& shapes,
-                               const std::vector<Contact>& contacts, const ContactEdge* edges,
-                               const int32_t* islandOfBody, const IslandSet& islands, const Vec3& up,
-                               const float* reach, float dt, float contactMargin,
-                               const TurnProjectionSettings& settings) {
-  if (settings.angle <= 0.0f) return 0;
-  const uint32_t n = uint32_t(bodies.size());
-  const uint32_t pairCount = uint32_t(contacts.size());
-  active_.assign(n, 0);
-  const float limit2 = (settings.angle / dt) * (settings.angle / dt);
-  auto jointed = [&](uint32_t i) { return islandOfBody[i] >= 0 && islands.islands[islandOfBody[i]].jointCount > 0; };
-  bool any = false;
-  for (uint32_t i = 0; i < n; ++i) {
-    if (bodies.w[i].squaredNorm() <= limit2) continue;  // the velocities are packed; shapes are not
-    if (shapes[i].type == ShapeType::Sphere || !bodies.isAwakeDynamic(i) || jointed(i)) continue;
-    any = true;
-    active_[i] = 1;
+// The depth a pair may keep: what it began the step with, within [keep, crushKeep], and deeper than
+// that by no more than crushRecover: what the step added goes, depth it began with only by a
+// bounded amount a step, as the solver's own push-out would (bodies spawned a metre into each other
+// were thrown apart in one step, one of them 0.38 m into the ground).
+float TurnProjection::target(uint32_t c) const {
+  const float start = in_.edges[c].deepest;
+  return std::max(std::max(settings_.keep, std::min(start, settings_.crushKeep)), start - settings_.crushRecover);
+}
+
+bool TurnProjection::jointed(uint32_t i) const {
+  const int32_t k = in_.islandOfBody[i];
+  return k >= 0 && in_.islands->islands[k].jointCount > 0;
+}
+
+bool TurnProjection::movable(uint32_t i) const {
+  return in_.bodies->isAwakeDynamic(i) && !jointed(i) && !held_[i];
+}
+
+bool TurnProjection::begin(const TurnProjectionInput& in, const TurnProjectionSettings& settings) {
+  if (settings.angle <= 0.0f) return false;
+  in_ = in;
+  settings_ = settings;
+  moved_ = 0;
+  const size_t n = in.bodies->size(), pairCount = in.contacts->size();
+  turned_.resize(n);
+  spinReach_.resize(n);
+  candidate_.resize(pairCount);
+  return pairCount > 0;
+}
+
+void TurnProjection::scanBodies(uint32_t begin, uint32_t end) {
+  const BodyStore& bodies = *in_.bodies;
+  const float limit = settings_.angle / in_.dt;
+  for (uint32_t i = begin; i < end; ++i) {
+    const float spin = bodies.w[i].norm();  // the velocities are packed; shapes are not
+    // A sphere's turn does not move its surface.
+    const bool sphere = (*in_.shapes)[i].type == ShapeType::Sphere;
+    spinReach_[i] = sphere ? 0.0f : spin * in_.reach[i];
+    turned_[i] = spin > limit && !sphere;
   }
-  // The depth a pair may keep: what it began the step with, within [keep, crushKeep], and deeper
-  // than that by no more than crushRecover: what the step added goes, depth it began with only by a
-  // bounded amount a step, as the solver's own push-out would (bodies spawned a metre into each
-  // other were thrown apart in one step, one of them 0.38 m into the ground).
-  auto target = [&](uint32_t c) {
-    const float start = edges[c].deepest;
-    return std::max(std::max(settings.keep, std::min(start, settings.crushKeep)), start - settings.crushRecover);
-  };
-  // Pairs driven into each other without a turn: each point's depth at the end of the step, read
-  // linearly from its depth at the start and the bodies' final velocities.
-  crushed_.assign(pairCount, 0);
-  if (settings.crushKeep > 0.0f) {
-    // A bound from the packed edges and velocities first: a resting pile's pairs (most pairs of
-    // most steps) end where they began, and their contacts, which are large, are not read.
-    motion_.resize(n);
-    for (uint32_t i = 0; i < n; ++i) motion_[i] = bodies.v[i].norm() + bodies.w[i].norm() * reach[i];
-    for (uint32_t c = 0; c < pairCount; ++c) {
-      const ContactEdge& e = edges[c];
-      if (!bodies.isAwakeDynamic(e.a) && !bodies.isAwakeDynamic(e.b)) continue;
-      const float closing = dt * (motion_[e.a] + motion_[e.b]);
-      if (e.count == 0 ? closing <= contactMargin : e.deepest + closing <= target(c) + kCrushSlack) continue;
-      const Contact& k = contacts[c];
-      const Vec3 va = bodies.v[k.a], vb = bodies.v[k.b], wa = bodies.w[k.a], wb = bodies.w[k.b];
-      if (k.manifold.count == 0) {
-        // No point: the pair was farther apart than it closed at the step's start. A body struck
-        // within the step closes faster (a ball falling at 12 m/s onto one at 13, stopped by what it
-        // landed on, was met 8 cm deep): where the final boxes overlap, it is collided again.
-        if ((vb - va).squaredNorm() * dt * dt <= contactMargin * contactMargin) continue;
-        if (computeAabb(shapes[k.a], bodies.xf[k.a]).overlaps(computeAabb(shapes[k.b], bodies.xf[k.b])))
-          crushed_[c] = 1, any = true;
-        continue;
-      }
-      const Vec3 pa = bodies.xf[k.a].p, pb = bodies.xf[k.b].p;
-      float predicted = -1e30f;
-      for (int i = 0; i < k.manifold.count; ++i) {
-        const ContactPoint& p = k.manifold.points[i];
-        const Vec3 rel = vb + wb.cross(p.position - pb) - va - wa.cross(p.position - pa);
-        predicted = std::max(predicted, p.depth + dt * rel.norm());
-      }
-      if (predicted > target(c) + kCrushSlack) crushed_[c] = 1, any = true;
+}
+
+// A contact is a candidate when it may end the step deeper than its target: no point of a body moves
+// farther than dt (|v| + |w| reach) in a step, and a pair whose depth plus their relative bound stays
+// under the target is left (most pairs of most steps, read from the packed edges only). Of the rest, a
+// pair with a turned body is taken (its points, linear in the turn, no longer say where it ends); the
+// others' points are read with the final velocities; a pair without points is taken where the
+// bodies' final boxes overlap (a pair farther apart at the start than it then closed: a ball falling
+// at 12 m/s onto one at 13, stopped by what it landed on, was met 8 cm deep).
+void TurnProjection::scanPairs(uint32_t begin, uint32_t end) {
+  const BodyStore& bodies = *in_.bodies;
+  const float dt = in_.dt;
+  for (uint32_t c = begin; c < end; ++c) {
+    candidate_[c] = 0;
+    const ContactEdge& e = in_.edges[c];
+    if (!bodies.isAwakeDynamic(e.a) && !bodies.isAwakeDynamic(e.b)) continue;
+    // A kinematic body cannot give way, and the joints of a jointed island would be pulled apart.
+    if (bodies.kind[e.a] == BodyKind::Kinematic || bodies.kind[e.b] == BodyKind::Kinematic) continue;
+    const float spin = spinReach_[e.a] + spinReach_[e.b];
+    const float closing = dt * ((bodies.v[e.b] - bodies.v[e.a]).norm() + spin);
+    if (e.count == 0 ? closing <= in_.contactMargin : e.deepest + closing <= target(c) + kCrushSlack) continue;
+    if (jointed(e.a) || jointed(e.b)) continue;
+    if (settings_.crushKeep <= 0.0f && !turned_[e.a] && !turned_[e.b]) continue;  // crushes left to the solver
+    if (e.count == 0) {
+      // Boxes from the start, each widened by how far its body may go: cheap, and most pairs stop here.
+      const float da = dt * (bodies.v[e.a].norm() + spinReach_[e.a]), db = dt * (bodies.v[e.b].norm() + spinReach_[e.b]);
+      if (in_.startBounds[e.a].expanded(da + db).overlaps(in_.startBounds[e.b])) candidate_[c] = 2;
+      continue;
     }
+    if (turned_[e.a] || turned_[e.b]) {
+      candidate_[c] = 1;
+      continue;
+    }
+    const Contact& k = (*in_.contacts)[c];
+    const Vec3 va = bodies.v[k.a], vb = bodies.v[k.b], wa = bodies.w[k.a], wb = bodies.w[k.b];
+    const Vec3 pa = bodies.xf[k.a].p, pb = bodies.xf[k.b].p;
+    float predicted = -std::numeric_limits<float>::infinity();
+    for (int i = 0; i < k.manifold.count; ++i) {
+      const ContactPoint& p = k.manifold.points[i];
+      const Vec3 rel = vb + wb.cross(p.position - pb) - va - wa.cross(p.position - pa);
+      predicted = std::max(predicted, p.depth + dt * rel.norm());
+    }
+    if (predicted > target(c) + kCrushSlack) candidate_[c] = 1;
   }
-  if (!any) return 0;  // most steps of most scenes: nothing more to read
+}
+
+bool TurnProjection::collectCandidates() {
+  const BodyStore& bodies = *in_.bodies;
+  const uint32_t n = uint32_t(bodies.size()), pairCount = uint32_t(in_.contacts->size());
+  bool any = false;
+  boxPairs_.clear();
+  for (uint32_t c = 0; c < pairCount; ++c) {
+    if (candidate_[c] == 0) continue;
+    any = true;
+    if (candidate_[c] == 2) boxPairs_.push_back(c);
+  }
+  if (!any) return false;
+  if (!boxPairs_.empty()) {
+    needBox_.assign(n, 0);
+    finalBox_.resize(n);
+    for (uint32_t c : boxPairs_) needBox_[in_.edges[c].a] = needBox_[in_.edges[c].b] = 1;
+  }
   // A body held against a kinematic one is left where the solver put it: the kinematic pair is not
   // collided again, and a push away from a neighbour could drive it into the mover (a bar crushing a
   // pile against a wall).
   held_.assign(n, 0);
   for (uint32_t c = 0; c < pairCount; ++c) {
-    const ContactEdge& k = edges[c];  // a, b and the point count, packed: the contacts are large
+    const ContactEdge& k = in_.edges[c];  // a, b and the point count, packed: the contacts are large
     if (k.count == 0) continue;
     if (bodies.kind[k.a] == BodyKind::Kinematic) held_[k.b] = 1;
     if (bodies.kind[k.b] == BodyKind::Kinematic) held_[k.a] = 1;
     // Pressed from both sides by what cannot move (haif/pinch.h): out of one is into the other.
-    if (contacts[c].pinched) held_[k.a] = held_[k.b] = 1;
+    if ((*in_.contacts)[c].pinched) held_[k.a] = held_[k.b] = 1;
   }
-  auto movable = [&](uint32_t i) { return bodies.isAwakeDynamic(i) && !jointed(i) && !held_[i]; };
-  for (uint32_t i = 0; i < n; ++i) active_[i] &= uint8_t(!held_[i]);
-  uint32_t moved = 0;
-  // Moves are numbered; a pair is collided again only when one of its bodies moved after it was
-  // last collided (a pair taken after its body moved, later in the same round, is where it was).
+  active_.assign(n, 0);
   movedAt_.assign(n, 0);
   collidedAt_.assign(pairCount, 0);
-  uint32_t clock = 1;
-  Manifold m;
-  // Round 1 takes the pairs of the turned bodies; each later round those of the bodies the round
-  // before moved (a box lifted out of a ball under it may now sit in the ball above it).
-  for (int round = 0; round < kRounds && any; ++round) {
-    pairs_.clear();
-    for (uint32_t c = 0; c < pairCount; ++c) {
-      const ContactEdge& k = edges[c];
-      if (!(active_[k.a] || active_[k.b] || (round == 0 && crushed_[c]))) continue;
-      if (collidedAt_[c] != 0 && std::max(movedAt_[k.a], movedAt_[k.b]) < collidedAt_[c]) continue;
-      if (bodies.kind[k.a] == BodyKind::Kinematic || bodies.kind[k.b] == BodyKind::Kinematic) continue;
-      if (jointed(k.a) || jointed(k.b)) continue;
-      pairs_.emplace_back(up.dot(bodies.xf[k.a].p + bodies.xf[k.b].p), c);
-    }
-    std::sort(pairs_.begin(), pairs_.end());  // lowest first; ties by contact index
-    std::fill(active_.begin(), active_.end(), 0);
-    any = false;
-    for (const auto& [height, c] : pairs_) {
-      const ContactEdge& k = edges[c];
-      collidedAt_[c] = clock;
-      if (collide(shapes[k.a], bodies.xf[k.a], shapes[k.b], bodies.xf[k.b], 0.0f, m) == 0) continue;
-      int deepest = 0;
-      for (int i = 1; i < m.count; ++i)
-        if (m.points[i].depth > m.points[deepest].depth) deepest = i;
-      // The target is never under `keep`; a pair a later round finds where the last one left it stays.
-      const float excess = m.points[deepest].depth - target(c);
-      if (!(excess > kLeastMove)) continue;
-      const Vec3 normal = m.points[deepest].normal;  // from a to b
-      float ia = movable(k.a) ? bodies.invMass[k.a] : 0.0f;
-      float ib = movable(k.b) ? bodies.invMass[k.b] : 0.0f;
-      // One on top of the other: the lower one was settled already (its pairs came first), and
-      // only the upper one moves.
-      const float along = normal.dot(up);
-      if (along > kStacked && ib > 0.0f) ia = 0.0f;
-      if (along < -kStacked && ia > 0.0f) ib = 0.0f;
-      if (ia + ib <= 0.0f) continue;
-      const float share = excess / (ia + ib);
-      ++clock;
-      if (ia > 0.0f) bodies.xf[k.a].p -= (share * ia) * normal, active_[k.a] = 1, movedAt_[k.a] = clock, any = true;
-      if (ib > 0.0f) bodies.xf[k.b].p += (share * ib) * normal, active_[k.b] = 1, movedAt_[k.b] = clock, any = true;
-      ++clock;
-      ++moved;
-    }
+  clock_ = 1;
+  return true;
+}
+
+void TurnProjection::boxBodies(uint32_t begin, uint32_t end) {
+  for (uint32_t i = begin; i < end; ++i)
+    if (needBox_[i]) finalBox_[i] = computeAabb((*in_.shapes)[i], in_.bodies->xf[i]);
+}
+
+void TurnProjection::boxPairs() {
+  for (uint32_t c : boxPairs_) {
+    const ContactEdge& e = in_.edges[c];
+    candidate_[c] = finalBox_[e.a].overlaps(finalBox_[e.b]) ? 1 : 0;
   }
-  return moved;
+}
+
+// Round 0 takes the candidates; each later round the pairs of the bodies the round before moved (a
+// box lifted out of a ball under it may now sit in the ball above it), those collided earlier in
+// the step too, unless neither body moved since.
+bool TurnProjection::gatherRound(int round) {
+  const BodyStore& bodies = *in_.bodies;
+  const uint32_t pairCount = uint32_t(in_.contacts->size());
+  pairs_.clear();
+  for (uint32_t c = 0; c < pairCount; ++c) {
+    const ContactEdge& k = in_.edges[c];
+    if (!(round == 0 ? candidate_[c] == 1 : (active_[k.a] || active_[k.b]))) continue;
+    if (collidedAt_[c] != 0 && std::max(movedAt_[k.a], movedAt_[k.b]) < collidedAt_[c]) continue;
+    if (bodies.kind[k.a] == BodyKind::Kinematic || bodies.kind[k.b] == BodyKind::Kinematic) continue;
+    if (jointed(k.a) || jointed(k.b)) continue;
+    pairs_.emplace_back(in_.up.dot(bodies.xf[k.a].p + bodies.xf[k.b].p), c);
+  }
+  std::sort(pairs_.begin(), pairs_.end());  // lowest first; ties by contact index
+  std::fill(active_.begin(), active_.end(), 0);
+  ahead_.resize(pairs_.size());
+  roundStart_ = clock_;
+  return !pairs_.empty();
+}
+
+void TurnProjection::collideAhead(uint32_t begin, uint32_t end) {
+  for (uint32_t j = begin; j < end; ++j) {
+    const ContactEdge& k = in_.edges[pairs_[j].second];
+    collideNow(in_, k.a, k.b, ahead_[j].depth, ahead_[j].normal);
+  }
+}
+
+bool TurnProjection::resolveRound() {
+  BodyStore& bodies = *in_.bodies;
+  bool any = false;
+  for (size_t j = 0; j < pairs_.size(); ++j) {
+    const uint32_t c = pairs_[j].second;
+    const ContactEdge& k = in_.edges[c];
+    collidedAt_[c] = clock_;
+    float depth = ahead_[j].depth;
+    Vec3 normal = ahead_[j].normal;
+    // A body an earlier pair of this round moved: the collision made ahead is stale.
+    if (std::max(movedAt_[k.a], movedAt_[k.b]) > roundStart_) collideNow(in_, k.a, k.b, depth, normal);
+    // The target is never under `keep`; a pair a later round finds where the last one left it stays.
+    const float excess = depth - target(c);
+    if (!(excess > kLeastMove)) continue;
+    float ia = movable(k.a) ? bodies.invMass[k.a] : 0.0f;
+    float ib = movable(k.b) ? bodies.invMass[k.b] : 0.0f;
+    // One on top of the other: the lower one was settled already (its pairs came first), and only
+    // the upper one moves.
+    const float along = normal.dot(in_.up);
+    if (along > kStacked && ib > 0.0f) ia = 0.0f;
+    if (along < -kStacked && ia > 0.0f) ib = 0.0f;
+    if (ia + ib <= 0.0f) continue;
+    const float share = excess / (ia + ib);
+    ++clock_;
+    if (ia > 0.0f) bodies.xf[k.a].p -= (share * ia) * normal, active_[k.a] = 1, movedAt_[k.a] = clock_, any = true;
+    if (ib > 0.0f) bodies.xf[k.b].p += (share * ib) * normal, active_[k.b] = 1, movedAt_[k.b] = clock_, any = true;
+    ++clock_;
+    ++moved_;
+  }
+  return any;
 }
 
 }  // namespace haif

@@ -22,13 +22,16 @@
 // a neighbour: its pairs are taken in the next round, those collided earlier in the step too (a
 // box lifted 8 cm out of the box under it was left 0.107 m deep in the one resting on it, a pair
 // the first round had found apart), for up to six rounds (a poured pile of boxes needs four).
-// Resting pairs (depth under keep, no motion) are never collided again. A sphere's turn does not
+// Pairs that cannot end deeper than their target are never collided again: no point of a body
+// moves farther in a step than dt (|v| + |w| reach), which bounds how much deeper a pair can go
+// (a resting pile's pairs, and the pairs of a turned body with neighbours a hand's width away). A sphere's turn does not
 // move its surface (its crushes are taken); bodies in islands with joints would have their joints
 // pulled apart, a kinematic body cannot give way, and a body pinched between immovable ones
 // (haif/pinch.h) goes out of one into the other: those are left out.
 #pragma once
 
 #include "collision/shape.h"
+#include "core/aabb.h"
 #include "core/body_store.h"
 #include "dynamics/contact.h"
 #include "haif/islands.h"
@@ -51,26 +54,109 @@ struct TurnProjectionSettings {
   float crushRecover = 0.02f;
 };
 
+/// What the stage reads of the step: all narrow-phase pairs of this step with their manifolds from
+/// the step's start and their packed `edges`, the bodies at their final poses, and the step's islands.
+struct TurnProjectionInput {
+  BodyStore* bodies = nullptr;
+  const std::vector<Shape>* shapes = nullptr;
+  const std::vector<Contact>* contacts = nullptr;
+  const ContactEdge* edges = nullptr;
+  const int32_t* islandOfBody = nullptr;
+  const IslandSet* islands = nullptr;
+  Vec3 up = Vec3::UnitY();
+  const float* reach = nullptr;       ///< per body: bounding radius about its centre (m)
+  const Aabb* startBounds = nullptr;  ///< per body: tight box at the step's start
+  float dt = 0.0f;
+  float contactMargin = 0.0f;  ///< the narrow phase's base margin (m)
+};
+
 class TurnProjection {
  public:
-  /// Applies the stage to the contacts (all narrow-phase pairs of this step, their manifolds from
-  /// the step's start, and `edges`, their ContactEdge per contact) with the bodies' final poses;
-  /// `islandOfBody` and `islands` are the step's, `reach` each body's bounding radius about its
-  /// centre, `contactMargin` the narrow phase's base margin.
-  /// Reads bodies in index order and pairs in height order, so the result does not depend on
-  /// threads. Returns the number of pairs moved apart.
-  uint32_t apply(BodyStore& bodies, const std::vector<Shape>& shapes, const std::vector<Contact>& contacts,
-                 const ContactEdge* edges, const int32_t* islandOfBody, const IslandSet& islands, const Vec3& up,
-                 const float* reach, float dt, float contactMargin, const TurnProjectionSettings& settings);
+  /// Applies the stage; returns the number of pairs moved apart. `parallelFor(n, grain, f)` runs
+  /// f(begin, end) over [0, n) in chunks of at least `grain`, on any threads: the per-body and
+  /// per-pair scans and each round's collisions run through it. Bodies are read in index order and
+  /// pairs moved in height order, so the result does not depend on the threads.
+  template <class ParallelFor>
+  uint32_t apply(const TurnProjectionInput& in, const TurnProjectionSettings& settings, ParallelFor&& parallelFor);
+  /// The same on the calling thread.
+  uint32_t apply(const TurnProjectionInput& in, const TurnProjectionSettings& settings) {
+    return apply(in, settings, [](uint32_t n, uint32_t, auto&& f) {
+      if (n > 0) f(0u, n);
+    });
+  }
 
  private:
-  std::vector<uint8_t> active_;  // per body: turned this step (round 1), or moved by the last round
-  std::vector<float> motion_;     // per body: |v| + |w| reach, the fastest any point of it moves
-  std::vector<uint8_t> crushed_;  // per contact: driven deeper than its target by the step's velocities
-  std::vector<uint8_t> held_;     // per body: touches a kinematic body, or pinched: not moved
+  /// Bodies a chunk of the per-body scan takes (a few loads each).
+  static constexpr uint32_t kBodyChunk = 4096;
+  /// Pairs a chunk of the candidate scan takes (a bound from packed data, most pairs stop there).
+  static constexpr uint32_t kPairChunk = 1024;
+  /// Pairs a task of a round's collisions takes: 0.1 to 10 microseconds each, very uneven.
+  static constexpr uint32_t kCollideChunk = 16;
+  /// Rounds of pairs: the candidates, then those of the bodies each round moved.
+  static constexpr int kRounds = 6;
+
+  // The stages of apply, in order; each `(begin, end)` one runs on any thread over its range.
+  bool begin(const TurnProjectionInput& in, const TurnProjectionSettings& settings);
+  void scanBodies(uint32_t begin, uint32_t end);
+  void scanPairs(uint32_t begin, uint32_t end);
+  bool collectCandidates();  // also notes which bodies need a final box, and the held bodies
+  void boxBodies(uint32_t begin, uint32_t end);
+  void boxPairs();
+  bool gatherRound(int round);
+  void collideAhead(uint32_t begin, uint32_t end);
+  bool resolveRound();
+
+  float target(uint32_t contact) const;
+  bool jointed(uint32_t body) const;
+  bool movable(uint32_t body) const;
+
+  // What the stage reads (set by begin).
+  TurnProjectionInput in_;
+  TurnProjectionSettings settings_;
+  uint32_t moved_ = 0;
+  uint32_t clock_ = 0;   // moves are numbered: a pair is collided again only if a body moved since
+  uint32_t roundStart_ = 0;
+
+  /// A round's collision of one pair, made at the round's start poses.
+  struct Ahead {
+    float depth = 0.0f;  // of the deepest point (-inf: no point)
+    Vec3 normal = Vec3::UnitY();
+  };
+
+  std::vector<uint8_t> turned_;     // per body: |w| dt above the angle
+  std::vector<uint8_t> active_;     // per body: moved by the last round
+  std::vector<float> spinReach_;    // per body: |w| reach, the fastest any point of it moves about its centre
+  std::vector<uint8_t> candidate_;  // per contact: 1 collide again, 2 if the final boxes overlap
+  std::vector<uint8_t> needBox_;    // per body: its final box is asked for
+  std::vector<Aabb> finalBox_;      // per body: box at the final pose (where needBox_)
+  std::vector<uint32_t> boxPairs_;  // contacts whose final boxes decide
+  std::vector<uint8_t> held_;       // per body: touches a kinematic body, or pinched: not moved
   std::vector<uint32_t> movedAt_;     // per body: the move clock when it last moved (0: not this step)
   std::vector<uint32_t> collidedAt_;  // per contact: the move clock when it was last collided again
-  std::vector<std::pair<float, uint32_t>> pairs_;  // (height, contact) of the pairs to collide again
+  std::vector<std::pair<float, uint32_t>> pairs_;  // (height, contact) of this round, lowest first
+  std::vector<Ahead> ahead_;                       // per entry of pairs_
 };
+
+template <class ParallelFor>
+uint32_t TurnProjection::apply(const TurnProjectionInput& in, const TurnProjectionSettings& settings,
+                               ParallelFor&& parallelFor) {
+  if (!begin(in, settings)) return 0;
+  const uint32_t n = uint32_t(in.bodies->size());
+  parallelFor(n, kBodyChunk, [&](uint32_t b, uint32_t e) { scanBodies(b, e); });
+  parallelFor(uint32_t(in.contacts->size()), kPairChunk, [&](uint32_t b, uint32_t e) { scanPairs(b, e); });
+  if (!collectCandidates()) return 0;  // most steps of most scenes: nothing more to read
+  if (!boxPairs_.empty()) {
+    parallelFor(n, kBodyChunk, [&](uint32_t b, uint32_t e) { boxBodies(b, e); });
+    boxPairs();
+  }
+  // Each round's pairs are collided ahead, in parallel, at the poses the round starts from; then
+  // taken in height order, where a pair whose body an earlier pair of the round moved is collided
+  // again on the spot (as taking them one by one would).
+  for (int round = 0; round < kRounds && gatherRound(round); ++round) {
+    parallelFor(uint32_t(pairs_.size()), kCollideChunk, [&](uint32_t b, uint32_t e) { collideAhead(b, e); });
+    if (!resolveRound()) break;
+  }
+  return moved_;
+}
 
 }  // namespace haif

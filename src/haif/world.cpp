@@ -110,6 +110,23 @@ void World::boundSpeeds() {
   stats_.speedLimited += slowed.load();
 }
 
+uint32_t World::projectTurns() {
+  TurnProjectionInput in;
+  in.bodies = &bodies_;
+  in.shapes = &shapes_;
+  in.contacts = &contacts_;
+  in.edges = contactEdges_.data();
+  in.islandOfBody = islandOfBody_.data();
+  in.islands = &islands_;
+  in.up = upDirection();
+  in.reach = speedBound_.reaches();
+  in.startBounds = bounds_.data();
+  in.dt = settings_.dt;
+  in.contactMargin = settings_.contactMargin;
+  return turnProjection_.apply(in, settings_.turnProjection,
+                               [this](uint32_t count, uint32_t grain, auto&& f) { parallelFor(count, grain, f); });
+}
+
 void World::step() {
   const auto t0 = Clock::now();
   // settings() is writable: a thread count set there takes effect here, before anything runs on the
@@ -189,9 +206,7 @@ void World::step() {
   const auto t3 = Clock::now();
   relaxIslands(relax);
   boundSpeeds();
-  stats_.turnProjected = turnProjection_.apply(bodies_, shapes_, contacts_, contactEdges_.data(),
-                                                islandOfBody_.data(), islands_, upDirection(), speedBound_.reaches(),
-                                                dt, settings_.contactMargin, settings_.turnProjection);
+  stats_.turnProjected = projectTurns();
   if (!joints_.empty()) breakJoints();
   const double relaxMs = msSince(t3);
   stats_.solveMs += relaxMs;

@@ -233,6 +233,8 @@ class World {
   SpeedBound speedBound_;
   /// Slows bodies over the speed bound (all of them, in parallel); adds the count to the step's stats.
   void boundSpeeds();
+  /// Runs the after-step TurnProjection stage over the step's pairs; returns the pairs it moved apart.
+  uint32_t projectTurns();
   /// Water density over the lightest dynamic body's density (0 without water), for the speed bound.
   float waterLift() const;
   /// Lowest point of the static bodies along up (planes excluded; +inf without any: no floor), for
