@@ -69,7 +69,9 @@ void TurnProjection::scanBodies(uint32_t begin, uint32_t end) {
     const float spin = bodies.w[i].norm();  // the velocities are packed; shapes are not
     // A sphere's turn does not move its surface.
     const bool sphere = (*in_.shapes)[i].type == ShapeType::Sphere;
-    spinReach_[i] = sphere ? 0.0f : spin * in_.reach[i];
+    // A body without a reach (a mesh) that turns, a kinematic one, is bounded by nothing.
+    const bool unbounded = in_.reach[i] <= 0.0f && spin > 0.0f && !sphere;
+    spinReach_[i] = sphere ? 0.0f : unbounded ? std::numeric_limits<float>::infinity() : spin * in_.reach[i];
     turned_[i] = spin > limit && !sphere;
   }
 }
@@ -88,12 +90,10 @@ void TurnProjection::scanPairs(uint32_t begin, uint32_t end) {
     candidate_[c] = 0;
     const ContactEdge& e = in_.edges[c];
     if (!bodies.isAwakeDynamic(e.a) && !bodies.isAwakeDynamic(e.b)) continue;
-    // A kinematic body cannot give way, and the joints of a jointed island would be pulled apart.
-    if (bodies.kind[e.a] == BodyKind::Kinematic || bodies.kind[e.b] == BodyKind::Kinematic) continue;
     const float spin = spinReach_[e.a] + spinReach_[e.b];
     const float closing = dt * ((bodies.v[e.b] - bodies.v[e.a]).norm() + spin);
     if (e.count == 0 ? closing <= in_.contactMargin : e.deepest + closing <= target(c) + kCrushSlack) continue;
-    if (jointed(e.a) || jointed(e.b)) continue;
+    if (jointed(e.a) || jointed(e.b)) continue;  // its joints would be pulled apart
     if (settings_.crushKeep <= 0.0f && !turned_[e.a] && !turned_[e.b]) continue;  // crushes left to the solver
     if (e.count == 0) {
       // Boxes from the start, each widened by how far its body may go: cheap, and most pairs stop here.
@@ -134,17 +134,13 @@ bool TurnProjection::collectCandidates() {
     finalBox_.resize(n);
     for (uint32_t c : boxPairs_) needBox_[in_.edges[c].a] = needBox_[in_.edges[c].b] = 1;
   }
-  // A body held against a kinematic one is left where the solver put it: the kinematic pair is not
-  // collided again, and a push away from a neighbour could drive it into the mover (a bar crushing a
-  // pile against a wall).
+  // A body pressed from both sides by what cannot move (haif/pinch.h) is left where the solver put
+  // it: out of one is into the other. A kinematic body is as immovable as a static one here: the
+  // body in it moves out (into the pile, whose pairs the next round takes).
   held_.assign(n, 0);
   for (uint32_t c = 0; c < pairCount; ++c) {
     const ContactEdge& k = in_.edges[c];  // a, b and the point count, packed: the contacts are large
-    if (k.count == 0) continue;
-    if (bodies.kind[k.a] == BodyKind::Kinematic) held_[k.b] = 1;
-    if (bodies.kind[k.b] == BodyKind::Kinematic) held_[k.a] = 1;
-    // Pressed from both sides by what cannot move (haif/pinch.h): out of one is into the other.
-    if ((*in_.contacts)[c].pinched) held_[k.a] = held_[k.b] = 1;
+    if (k.count > 0 && (*in_.contacts)[c].pinched) held_[k.a] = held_[k.b] = 1;
   }
   active_.assign(n, 0);
   movedAt_.assign(n, 0);
@@ -176,7 +172,6 @@ bool TurnProjection::gatherRound(int round) {
     const ContactEdge& k = in_.edges[c];
     if (!(round == 0 ? candidate_[c] == 1 : (active_[k.a] || active_[k.b]))) continue;
     if (collidedAt_[c] != 0 && std::max(movedAt_[k.a], movedAt_[k.b]) < collidedAt_[c]) continue;
-    if (bodies.kind[k.a] == BodyKind::Kinematic || bodies.kind[k.b] == BodyKind::Kinematic) continue;
     if (jointed(k.a) || jointed(k.b)) continue;
     pairs_.emplace_back(in_.up.dot(bodies.xf[k.a].p + bodies.xf[k.b].p), c);
   }

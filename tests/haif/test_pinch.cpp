@@ -94,6 +94,8 @@ TEST(Pinch, SweptBoxStaysOnTheStaticSide) {
   for (const bool resolve : {true, false}) {
     WorldSettings ws;
     ws.resolvePinches = resolve;
+    // The control goes without the turn projection too: it moves a box out of the bar as well.
+    if (!resolve) ws.turnProjection.angle = 0.0f;
     World w(ws);
     addGround(w);
     addStaticBox(w, Vec3(2.0f, 1.0f, 0.0f), Vec3(0.25f, 1.0f, 2.0f));  // inner face at x = 1.75
@@ -128,6 +130,9 @@ struct CrushResult {
 CrushResult crushRowOfThree(bool resolve) {
   WorldSettings ws;
   ws.resolvePinches = resolve;
+  // The control goes without the turn projection too: it moves the row out of the bar as well (and,
+  // since session 25, alone keeps it from being thrown: fastest 2.1 m/s, 0.2 m short of the wall).
+  if (!resolve) ws.turnProjection.angle = 0.0f;
   World w(ws);
   addGround(w);
   addStaticBox(w, Vec3(2.0f, 1.0f, 0.0f), Vec3(0.25f, 1.0f, 2.0f));  // inner face at x = 1.75

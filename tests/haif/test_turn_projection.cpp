@@ -228,6 +228,24 @@ TEST(TurnProjection, APairWhoseBodyAnEarlierPairMovedIsCollidedAgain) {
   EXPECT_NEAR(s.bodies.xf[box].p.y(), 0.54f, 1e-4f);
 }
 
+// A box 8 cm into a kinematic platform rising at 1 m/s, 1 cm in at the step's start: the platform
+// does not give way, so the box moves out to the keep depth (a turning drum pressed the bottom of its
+// pile 9 cm into its wall). Marked pinched (pressed from the other side too, haif/pinch.h), it is left.
+TEST(TurnProjection, MovesABodyOutOfAKinematicOneUnlessPinched) {
+  for (const bool pinched : {false, true}) {
+    Scene s;
+    const uint32_t platform = s.add(BodyKind::Kinematic, Shape::box(Vec3(2, 0.25f, 2)), Vec3(0, 0, 0), 0);
+    const uint32_t box = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0, 0.67f, 0), 1);
+    s.pairAt(platform, box, Vec3(0, 0.25f, 0), Vec3::UnitY(), 0.01f);
+    s.contacts[0].pinched = pinched;
+    s.bodies.v[platform] = Vec3(0, 1, 0);
+    const TurnProjectionSettings d;
+    EXPECT_EQ(s.apply(), pinched ? 0u : 1u);
+    EXPECT_NEAR(s.bodies.xf[box].p.y(), pinched ? 0.67f : 0.75f - d.keep, 1e-4f);
+    EXPECT_EQ(s.bodies.xf[platform].p, Vec3::Zero());
+  }
+}
+
 // 400 boxes, capsules and balls of 1-40 kg thrown spinning into a 6 m pit: the scans and each
 // round's collisions run on the workers, and the stage moves the same bodies by the same amounts as
 // on one thread (a pair collided ahead and taken after its body moved is collided again).
