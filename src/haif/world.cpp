@@ -84,9 +84,8 @@ void World::wake(uint32_t body) {
     wakeOne(body);
     return;
   }
-  for (uint32_t i : sleepSets_[set]) wakeOne(i);
-  sleepSets_[set].clear();
-  freeSleepSets_.push_back(set);
+  for (uint32_t i : sleepSets_.members(set)) wakeOne(i);
+  sleepSets_.close(set);
 }
 
 Vec3 World::upDirection() const {

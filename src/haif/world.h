@@ -19,6 +19,7 @@
 #include "haif/lane_batches.h"
 #include "haif/pinch.h"
 #include "haif/rest_damping.h"
+#include "haif/sleep_sets.h"
 #include "haif/speed_bound.h"
 #include "haif/step_stats.h"
 #include "haif/tsan_pool.h"
@@ -164,9 +165,12 @@ class World {
   BroadPhase broadPhase_;
   PairMap pairs_;
   std::vector<Contact> contacts_;
-  std::vector<std::vector<std::pair<uint32_t, uint32_t>>> newPairRuns_;  // per run of moved bodies: pairs found
-  std::vector<uint8_t> wakeFlag_;     // per contact: touching state changed this step
-  std::vector<uint8_t> reusedFlag_;   // per contact: its manifold was reused this step
+  // The broad and narrow phase's scratch (world_collision.cpp).
+  struct CollisionBuffers {
+    std::vector<std::vector<std::pair<uint32_t, uint32_t>>> newPairRuns;  // per run of moved bodies: pairs found
+    std::vector<uint8_t> wakeFlag;    // per contact: touching state changed this step
+    std::vector<uint8_t> reusedFlag;  // per contact: its manifold was reused this step
+  } collision_;
   std::vector<ContactEdge> contactEdges_;  // per contact: its bodies and point count, from the narrow phase on
   PinchDetector pinch_;               // marks contacts of bodies pressed between immovable ones
   uint32_t pinchedBodies_ = 0;        // this step's, from pinch_
@@ -175,18 +179,24 @@ class World {
   IslandBuilder islandBuilder_;
   IslandSet islands_;
   std::vector<int32_t> islandOfBody_;
-  std::vector<float> contactHeight_;  // solve-order key per contact
-  std::vector<uint64_t> orderKeys_;   // the top-down sort's keys (descendingKey), in island order
-  std::vector<float> carried_;        // per body: weight impulse (N s) it carries this step, for cold contacts
-  std::vector<uint16_t> supports_;    // per body: contacts holding it up
+  // The solve order's scratch (world_solve_order.cpp): top-down keys and the cold-start loads.
+  struct SolveOrderBuffers {
+    std::vector<float> contactHeight;  // solve-order key per contact
+    std::vector<uint64_t> keys;        // the top-down sort's keys (descendingKey), in island order
+    std::vector<float> carried;        // per body: weight impulse (N s) it carries this step, for cold contacts
+    std::vector<uint16_t> supports;    // per body: contacts holding it up
+  } order_;
   std::vector<ContactConstraint> constraints_;
   std::vector<ChainLink> chainLinks_;  // parallel to constraints_; used for islands that form a chain
   std::vector<uint8_t> isChain_;       // per island: its contacts were prepared as a chain this step
   std::vector<uint32_t> chainMark_;    // per body: scratch of prepareChain
-  std::vector<int> islandIterations_;
-  std::vector<float> islandResidual_;
-  std::vector<int> islandExtra_;      // spare iterations given to unconverged islands this step
-  std::vector<uint32_t> spareOrder_;  // unconverged islands, largest residual first
+  // Per island: what its sweeps did, and the spare iterations shared out (world_solve.cpp).
+  struct SpareIterationBuffers {
+    std::vector<int> iterations;    // sweeps it ran this step
+    std::vector<float> residual;    // its last sweep's residual
+    std::vector<int> extra;         // spare iterations given to it this step (unconverged)
+    std::vector<uint32_t> order;    // unconverged islands, largest residual first
+  } spare_;
   std::vector<uint32_t> batchStart_;  // island batches for parallel solving
   IslandSplitter splitter_;
   std::vector<int32_t> layoutOf_;     // per island: index into layouts_, or -1 when not split
@@ -209,8 +219,7 @@ class World {
   std::vector<float> jointStiffness_;              // per body, this step (N m)
   PairMap jointPairs_;  // body pair -> number of unbroken joints that keep the two from colliding
 
-  std::vector<std::vector<uint32_t>> sleepSets_;
-  std::vector<int32_t> freeSleepSets_;
+  SleepSets sleepSets_;  // the sleeping islands (world_sleep.cpp)
 
   std::unique_ptr<IterationController> controller_;
   std::unique_ptr<tbb::task_arena> arena_;
@@ -228,7 +237,10 @@ class World {
   void resetPhaseClocks();
   int solveErrorEvery_ = 0;
   double measurementMs_ = 0.0;  // time of this step's reference solve, excluded from its timings
-  std::vector<Vec3> saveV_, saveW_, startV_, startW_, refV_, refW_;
+  // The solve-error probe's velocities (world_solve_error.cpp): saved, the solve's start, the reference.
+  struct ProbeBuffers {
+    std::vector<Vec3> saveV, saveW, startV, startW, refV, refW;
+  } probe_;
 
   SpeedBound speedBound_;
   /// Slows bodies over the speed bound (all of them, in parallel); adds the count to the step's stats.

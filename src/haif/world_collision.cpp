@@ -45,10 +45,10 @@ void World::updateBroadPhase() {
   const std::vector<uint32_t>& moved = broadPhase_.moved();
   const uint32_t movedCount = uint32_t(moved.size());
   const uint32_t runs = (movedCount + kPairQueryGrain - 1) / kPairQueryGrain;
-  if (newPairRuns_.size() < runs) newPairRuns_.resize(runs);
+  if (collision_.newPairRuns.size() < runs) collision_.newPairRuns.resize(runs);
   parallelFor(runs, 1, [&](uint32_t begin, uint32_t end) {
     for (uint32_t r = begin; r < end; ++r) {
-      std::vector<std::pair<uint32_t, uint32_t>>& found = newPairRuns_[r];
+      std::vector<std::pair<uint32_t, uint32_t>>& found = collision_.newPairRuns[r];
       found.clear();
       const uint32_t last = std::min(movedCount, (r + 1) * kPairQueryGrain);
       for (uint32_t i = r * kPairQueryGrain; i < last; ++i)
@@ -59,7 +59,7 @@ void World::updateBroadPhase() {
   });
   uint32_t created = 0;
   for (uint32_t r = 0; r < runs; ++r) {
-    for (const auto& [a, b] : newPairRuns_[r]) {
+    for (const auto& [a, b] : collision_.newPairRuns[r]) {
       Contact c;
       c.a = std::min(a, b);
       c.b = std::max(a, b);
@@ -125,8 +125,8 @@ float World::spinReach(uint32_t body) const {
 
 void World::narrowPhase() {
   const uint32_t n = static_cast<uint32_t>(contacts_.size());
-  wakeFlag_.resize(n);
-  reusedFlag_.assign(n, 0);
+  collision_.wakeFlag.resize(n);
+  collision_.reusedFlag.assign(n, 0);
   contactEdges_.resize(n);
   auto active = [&](uint32_t i) {
     return bodies_.kind[i] == BodyKind::Kinematic || (bodies_.kind[i] == BodyKind::Dynamic && !bodies_.asleep[i]);
@@ -137,7 +137,7 @@ void World::narrowPhase() {
   parallelFor(n, kPairGrain, [&](uint32_t begin, uint32_t end) {
     for (uint32_t ci = begin; ci < end; ++ci) {
       Contact& c = contacts_[ci];
-      wakeFlag_[ci] = 0;
+      collision_.wakeFlag[ci] = 0;
       c.pinched = false;  // PinchDetector::mark sets it again
       ContactEdge& edge = contactEdges_[ci];
       edge.a = c.a;
@@ -162,7 +162,7 @@ void World::narrowPhase() {
       // pairs are cheap to collide and always made again (nor remembered).
       const bool reusable = settings_.reuseManifolds && !rolls(shapes_[c.a]) && !rolls(shapes_[c.b]);
       if (reusable && rel < restingClosing && refreshManifold(c.cache, xa, xb, reuseLimits, c.manifold)) {
-        reusedFlag_[ci] = 1;
+        collision_.reusedFlag[ci] = 1;
         updateAnchor(c, xa, xb);
         noteEdge(c, edge, againstImmovable);
         continue;  // same points and ids: the impulses stay where they are
@@ -205,18 +205,18 @@ void World::narrowPhase() {
         c.frictionImpulse.setZero();
         c.twistImpulse = 0.0f;
       }
-      if ((old.count > 0) != (c.manifold.count > 0)) wakeFlag_[ci] = 1;
+      if ((old.count > 0) != (c.manifold.count > 0)) collision_.wakeFlag[ci] = 1;
       updateAnchor(c, xa, xb);
       noteEdge(c, edge, againstImmovable);
     }
   });
 
-  for (const uint8_t reused : reusedFlag_) stats_.manifoldsReused += reused;
+  for (const uint8_t reused : collision_.reusedFlag) stats_.manifoldsReused += reused;
   // Destroy contacts whose fat boxes separated; wake sleeping bodies whose contacts changed.
   // It reads the flat edges, not the contacts (a pass over those took ~0.4 ms in many_pyramids).
   for (uint32_t ci = 0; ci < contacts_.size();) {
     const ContactEdge c = contactEdges_[ci];
-    if (wakeFlag_[ci]) {
+    if (collision_.wakeFlag[ci]) {
       wake(c.a);
       wake(c.b);
     }
@@ -225,12 +225,12 @@ void World::narrowPhase() {
       const uint32_t last = static_cast<uint32_t>(contacts_.size() - 1);
       if (ci != last) {
         contacts_[ci] = contacts_[last];
-        wakeFlag_[ci] = wakeFlag_[last];
+        collision_.wakeFlag[ci] = collision_.wakeFlag[last];
         contactEdges_[ci] = contactEdges_[last];
         pairs_.set(PairMap::key(contacts_[ci].a, contacts_[ci].b), ci);
       }
       contacts_.pop_back();
-      wakeFlag_.pop_back();
+      collision_.wakeFlag.pop_back();
       contactEdges_.pop_back();
       continue;
     }

@@ -4,22 +4,14 @@
 namespace haif {
 
 void World::putIslandToSleep(const Island& isl) {
-  int32_t set;
-  if (!freeSleepSets_.empty()) {
-    set = freeSleepSets_.back();
-    freeSleepSets_.pop_back();
-  } else {
-    set = static_cast<int32_t>(sleepSets_.size());
-    sleepSets_.emplace_back();
-  }
-  auto& members = sleepSets_[set];
+  const int32_t set = sleepSets_.open();
   for (uint32_t j = 0; j < isl.bodyCount; ++j) {
     const uint32_t i = islands_.bodies[isl.firstBody + j];
     bodies_.asleep[i] = 1;
     bodies_.sleepSet[i] = set;
     bodies_.v[i].setZero();
     bodies_.w[i].setZero();
-    members.push_back(i);
+    sleepSets_.add(set, i);
   }
 }
 

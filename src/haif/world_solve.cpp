@@ -147,8 +147,8 @@ void World::solveIslands(int iterations) {
       }
       lastChange = change;
     }
-    islandIterations_[k] = isl.contactCount + isl.jointCount > 0 ? it : 0;
-    islandResidual_[k] = residual;
+    spare_.iterations[k] = isl.contactCount + isl.jointCount > 0 ? it : 0;
+    spare_.residual[k] = residual;
   };
   forEachIslandTimed(prepareIsland, sweepIslandMain);
   if (tol > 0.0f && iterations > 0) shareSpareIterations(iterations);
@@ -162,36 +162,36 @@ void World::shareSpareIterations(int iterations) {
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
   uint64_t spare = 0;
   for (uint32_t k = 0; k < m; ++k)
-    spare += uint64_t(iterations - std::min(iterations, islandIterations_[k])) * islands_.islands[k].rows;
-  islandExtra_.assign(m, 0);
+    spare += uint64_t(iterations - std::min(iterations, spare_.iterations[k])) * islands_.islands[k].rows;
+  spare_.extra.assign(m, 0);
   bool any = false;
   const float tol = settings_.residualTolerance;
-  spareOrder_.clear();
+  spare_.order.clear();
   for (uint32_t k = 0; k < m; ++k)
-    if (islands_.islands[k].rows > 0 && islandResidual_[k] >= tol) spareOrder_.push_back(k);
+    if (islands_.islands[k].rows > 0 && spare_.residual[k] >= tol) spare_.order.push_back(k);
   // Ties broken by index: the order, and so the state, does not depend on the thread count.
-  std::sort(spareOrder_.begin(), spareOrder_.end(), [&](uint32_t x, uint32_t y) {
-    return islandResidual_[x] != islandResidual_[y] ? islandResidual_[x] > islandResidual_[y] : x < y;
+  std::sort(spare_.order.begin(), spare_.order.end(), [&](uint32_t x, uint32_t y) {
+    return spare_.residual[x] != spare_.residual[y] ? spare_.residual[x] > spare_.residual[y] : x < y;
   });
-  for (const uint32_t k : spareOrder_) {
+  for (const uint32_t k : spare_.order) {
     if (spare == 0) break;
     const uint32_t rows = islands_.islands[k].rows;
     const int extra = int(std::min<uint64_t>(uint64_t(iterations), spare / rows));
     if (extra == 0) continue;
-    islandExtra_[k] = extra;
+    spare_.extra[k] = extra;
     spare -= uint64_t(extra) * rows;
     any = true;
   }
   if (!any) return;
   forEachIslandTimed([](uint32_t) {}, [&](uint32_t k) {  // sweeps only
     int it = 0;
-    float residual = islandResidual_[k];
-    while (it < islandExtra_[k] && residual >= tol) {
+    float residual = spare_.residual[k];
+    while (it < spare_.extra[k] && residual >= tol) {
       residual = sweepIsland(k, true).residual;
       ++it;
     }
-    islandIterations_[k] += it;
-    islandResidual_[k] = residual;
+    spare_.iterations[k] += it;
+    spare_.residual[k] = residual;
   });
 }
 
@@ -224,7 +224,7 @@ void World::relaxIslands(int relaxIterations) {
     if (isWide(k)) forEachLaneRange(k, unpackLanes);
     forEachContactChunk(k, kContactChunk, [&](uint32_t b, uint32_t e) { storeImpulses(cs + b, e - b, contacts_.data()); });
     if (isl.jointCount > 0) finishJoints(k);
-    if (isl.contactCount + isl.jointCount > 0) islandIterations_[k] += relaxIterations;
+    if (isl.contactCount + isl.jointCount > 0) spare_.iterations[k] += relaxIterations;
   };
   forEachIslandTimed(relax, store, /*firstIsSweeps=*/true);
 }
@@ -239,8 +239,8 @@ void World::solve(int iterations) {
   jointConstraints_.resize(islands_.joints.size());
   if (jointTrees_.size() < m) jointTrees_.resize(m);  // grows to the most islands seen, then reused
   if (!joints_.empty()) stiffenJointedBodies();
-  islandIterations_.assign(m, 0);
-  islandResidual_.assign(m, 0.0f);
+  spare_.iterations.assign(m, 0);
+  spare_.residual.assign(m, 0.0f);
   // Islands come largest first: big ones get a task each, small ones are batched.
   batchStart_.clear();
   batchStart_.push_back(0);
@@ -270,12 +270,12 @@ void World::summariseIterations() {
   for (uint32_t k = 0; k < m; ++k) {
     const Island& isl = islands_.islands[k];
     if (isl.contactCount + isl.jointCount == 0) continue;
-    lo = std::min(lo, islandIterations_[k]);
-    hi = std::max(hi, islandIterations_[k]);
-    sum += islandIterations_[k];
+    lo = std::min(lo, spare_.iterations[k]);
+    hi = std::max(hi, spare_.iterations[k]);
+    sum += spare_.iterations[k];
     ++counted;
-    residual = std::max(residual, islandResidual_[k]);
-    rowIt += uint64_t(isl.rows) * uint64_t(islandIterations_[k]);
+    residual = std::max(residual, spare_.residual[k]);
+    rowIt += uint64_t(isl.rows) * uint64_t(spare_.iterations[k]);
   }
   stats_.iterationsMin = counted ? lo : 0;
   stats_.iterationsMax = counted ? hi : 0;

@@ -33,13 +33,13 @@ double World::measureSolveError(int iterations) {
   // the solver's starting point (after warm starting), v_I after the iterations, v* converged.
   const uint32_t n = bodyCount();
   const auto t0 = Clock::now();
-  saveV_ = bodies_.v;
-  saveW_ = bodies_.w;
+  probe_.saveV = bodies_.v;
+  probe_.saveW = bodies_.w;
   solveIslands(0);  // prepare + warm start only
-  startV_ = bodies_.v;
-  startW_ = bodies_.w;
-  bodies_.v = saveV_;
-  bodies_.w = saveW_;
+  probe_.startV = bodies_.v;
+  probe_.startW = bodies_.w;
+  bodies_.v = probe_.saveV;
+  bodies_.w = probe_.saveW;
   {
     // The reference solve converges: a tight tolerance and no floor on the sweeps, put back on the
     // way out of this block however it is left.
@@ -47,10 +47,10 @@ double World::measureSolveError(int iterations) {
     const ScopedValue<int> iMin(controller_->iMin, 1);
     solveIslands(1000);
   }
-  refV_ = bodies_.v;
-  refW_ = bodies_.w;
-  bodies_.v = saveV_;
-  bodies_.w = saveW_;
+  probe_.refV = bodies_.v;
+  probe_.refW = bodies_.w;
+  bodies_.v = probe_.saveV;
+  bodies_.w = probe_.saveW;
   measurementMs_ = msSince(t0);  // the reference solve is measurement, not step time
   resetPhaseClocks();
   solveIslands(iterations);
@@ -63,8 +63,8 @@ double World::measureSolveError(int iterations) {
     auto norm2 = [&](const Vec3& dv, const Vec3& dw) {
       return double(bodies_.mass[i]) * dv.squaredNorm() + double(dw.dot(I * dw));
     };
-    num += norm2(bodies_.v[i] - refV_[i], bodies_.w[i] - refW_[i]);
-    den += norm2(startV_[i] - refV_[i], startW_[i] - refW_[i]);
+    num += norm2(bodies_.v[i] - probe_.refV[i], bodies_.w[i] - probe_.refW[i]);
+    den += norm2(probe_.startV[i] - probe_.refV[i], probe_.startW[i] - probe_.refW[i]);
   }
   // When warm starting already put v_0 within float noise of v* (a resting stack), the ratio
   // of two noise-sized norms says nothing: the denominator is floored at an RMS velocity error

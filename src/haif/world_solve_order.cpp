@@ -18,8 +18,8 @@ constexpr uint32_t kParallelSortContacts = 8192;
 // gravity, a 100-layer pyramid at 10 iterations dropped 1.6 m on average bottom-up, 0.08 m top-down.
 void World::orderContactsTopDown() {
   const Vec3 up = upDirection();
-  contactHeight_.resize(contacts_.size());
-  orderKeys_.resize(islands_.contacts.size());
+  order_.contactHeight.resize(contacts_.size());
+  order_.keys.resize(islands_.contacts.size());
   const uint32_t* ids = islands_.contacts.data();
   parallelFor(uint32_t(islands_.contacts.size()), kHeightGrain, [&](uint32_t begin, uint32_t end) {
     for (uint32_t j = begin; j < end; ++j) {
@@ -32,8 +32,8 @@ void World::orderContactsTopDown() {
         const bool kinematic = bodies_.kind[c.a] == BodyKind::Kinematic || bodies_.kind[c.b] == BodyKind::Kinematic;
         h = kinematic ? std::numeric_limits<float>::max() : std::numeric_limits<float>::lowest();
       }
-      contactHeight_[ids[j]] = h;
-      orderKeys_[j] = descendingKey(h, ids[j]);  // top down; ties by index: deterministic
+      order_.contactHeight[ids[j]] = h;
+      order_.keys[j] = descendingKey(h, ids[j]);  // top down; ties by index: deterministic
     }
   });
   // Islands own disjoint ranges: sorted concurrently; a giant island is sorted in parallel itself.
@@ -41,7 +41,7 @@ void World::orderContactsTopDown() {
   parallelFor(m, kIslandGrain, [&](uint32_t begin, uint32_t end) {
     for (uint32_t k = begin; k < end; ++k) {
       const Island& isl = islands_.islands[k];
-      uint64_t* first = orderKeys_.data() + isl.firstContact;
+      uint64_t* first = order_.keys.data() + isl.firstContact;
       // Keys are unique (they hold the index): any sort gives the same order. Under TSan the sort
       // stays serial, as TBB's hand-offs are invisible to it (haif/tsan_pool.h).
       if (arena_ && isl.contactCount >= kParallelSortContacts && !kTsan)
@@ -66,8 +66,8 @@ void World::estimateColdImpulses() {
   const Vec3 up = -settings_.gravity / g;
   const float dt = settings_.dt;
   const float restSpeed = 2.0f * g * dt;
-  carried_.resize(bodyCount());
-  supports_.resize(bodyCount());
+  order_.carried.resize(bodyCount());
+  order_.supports.resize(bodyCount());
   // A support: a vertical-ish contact; its upper body is the one on the normal's upward side.
   auto upper = [&](const Contact& c, float& slope) -> int64_t {
     slope = c.manifold.points[0].normal.dot(up);
@@ -100,12 +100,12 @@ void World::estimateColdImpulses() {
       }
       if (!anyCold) continue;
       for (uint32_t j = 0; j < isl.bodyCount; ++j) {
-        carried_[bodies[j]] = 0.0f;
-        supports_[bodies[j]] = 0;
+        order_.carried[bodies[j]] = 0.0f;
+        order_.supports[bodies[j]] = 0;
       }
       for (uint32_t j = 0; j < isl.contactCount; ++j) {
         const int64_t u = upper(contacts_[contacts[j]], slope);
-        if (u >= 0 && supports_[u] < 0xffff) ++supports_[u];
+        if (u >= 0 && order_.supports[u] < 0xffff) ++order_.supports[u];
       }
       // Islands' contacts are in top-down order: a body's load is complete before its supports are met.
       for (uint32_t j = 0; j < isl.contactCount; ++j) {
@@ -113,8 +113,8 @@ void World::estimateColdImpulses() {
         const int64_t u = upper(c, slope);
         if (u < 0) continue;
         const uint32_t lower = uint32_t(u) == c.a ? c.b : c.a;
-        const float share = (bodies_.mass[u] * g * dt + carried_[u]) / float(supports_[u]);
-        if (bodies_.isAwakeDynamic(lower)) carried_[lower] += share;
+        const float share = (bodies_.mass[u] * g * dt + order_.carried[u]) / float(order_.supports[u]);
+        if (bodies_.isAwakeDynamic(lower)) order_.carried[lower] += share;
         if (!isCold(contacts[j])) continue;
         const float perPoint = share / (std::fabs(slope) * float(c.manifold.count));
         for (int i = 0; i < c.manifold.count; ++i) c.normalImpulse[i] = perPoint;
@@ -151,7 +151,7 @@ void World::splitGiantIslands() {
 void World::batchLanes() {
   if (!settings_.wideSolve) return;
   laneRun_.resize(islands_.contacts.size());
-  const float* levels = settings_.topDownOrder ? contactHeight_.data() : nullptr;
+  const float* levels = settings_.topDownOrder ? order_.contactHeight.data() : nullptr;
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
   for (uint32_t k = 0; k < m; ++k) {
     const Island& isl = islands_.islands[k];
