@@ -3,6 +3,7 @@
 #include "collision/collide.h"
 
 #include <algorithm>
+#include <functional>
 #include <limits>
 
 namespace haif {
@@ -142,11 +143,36 @@ bool TurnProjection::collectCandidates() {
     const ContactEdge& k = in_.edges[c];  // a, b and the point count, packed: the contacts are large
     if (k.count > 0 && (*in_.contacts)[c].pinched) held_[k.a] = held_[k.b] = 1;
   }
+  // Each body's pairs that a round may take (CSR), so a round gathers the pairs of the bodies that
+  // moved without reading every pair, and a move brings its body's higher pairs into the same round.
+  pairStart_.assign(n + 1, 0);
+  for (uint32_t c = 0; c < pairCount; ++c) {
+    const ContactEdge& k = in_.edges[c];
+    if (!takeable(k)) continue;
+    ++pairStart_[k.a + 1];
+    ++pairStart_[k.b + 1];
+  }
+  for (uint32_t i = 0; i < n; ++i) pairStart_[i + 1] += pairStart_[i];
+  pairOf_.resize(pairStart_[n]);
+  fill_.assign(pairStart_.begin(), pairStart_.end() - 1);
+  for (uint32_t c = 0; c < pairCount; ++c) {
+    const ContactEdge& k = in_.edges[c];
+    if (!takeable(k)) continue;
+    pairOf_[fill_[k.a]++] = c;
+    pairOf_[fill_[k.b]++] = c;
+  }
   active_.assign(n, 0);
   movedAt_.assign(n, 0);
   collidedAt_.assign(pairCount, 0);
+  queuedIn_.assign(pairCount, 0);
   clock_ = 1;
   return true;
+}
+
+bool TurnProjection::takeable(const ContactEdge& k) const {
+  const BodyStore& bodies = *in_.bodies;
+  if (!bodies.isAwakeDynamic(k.a) && !bodies.isAwakeDynamic(k.b)) return false;
+  return !jointed(k.a) && !jointed(k.b);  // its joints would be pulled apart
 }
 
 void TurnProjection::boxBodies(uint32_t begin, uint32_t end) {
@@ -166,19 +192,29 @@ void TurnProjection::boxPairs() {
 // the step too, unless neither body moved since.
 bool TurnProjection::gatherRound(int round) {
   const BodyStore& bodies = *in_.bodies;
-  const uint32_t pairCount = uint32_t(in_.contacts->size());
+  const uint32_t stamp = uint32_t(round) + 1;  // queuedIn_: the round a pair was last queued in, + 1
   pairs_.clear();
-  for (uint32_t c = 0; c < pairCount; ++c) {
+  auto take = [&](uint32_t c) {
     const ContactEdge& k = in_.edges[c];
-    if (!(round == 0 ? candidate_[c] == 1 : (active_[k.a] || active_[k.b]))) continue;
-    if (collidedAt_[c] != 0 && std::max(movedAt_[k.a], movedAt_[k.b]) < collidedAt_[c]) continue;
-    if (jointed(k.a) || jointed(k.b)) continue;
+    if (queuedIn_[c] == stamp) return;
+    if (collidedAt_[c] != 0 && std::max(movedAt_[k.a], movedAt_[k.b]) < collidedAt_[c]) return;
+    queuedIn_[c] = stamp;
     pairs_.emplace_back(in_.up.dot(bodies.xf[k.a].p + bodies.xf[k.b].p), c);
+  };
+  if (round == 0) {
+    const uint32_t pairCount = uint32_t(in_.contacts->size());
+    for (uint32_t c = 0; c < pairCount; ++c)
+      if (candidate_[c] == 1 && takeable(in_.edges[c])) take(c);
+  } else {
+    for (uint32_t i = 0; i < uint32_t(active_.size()); ++i)
+      if (active_[i])
+        for (uint32_t j = pairStart_[i]; j < pairStart_[i + 1]; ++j) take(pairOf_[j]);
   }
   std::sort(pairs_.begin(), pairs_.end());  // lowest first; ties by contact index
   std::fill(active_.begin(), active_.end(), 0);
   ahead_.resize(pairs_.size());
   roundStart_ = clock_;
+  round_ = round;
   return !pairs_.empty();
 }
 
@@ -191,15 +227,33 @@ void TurnProjection::collideAhead(uint32_t begin, uint32_t end) {
 
 bool TurnProjection::resolveRound() {
   BodyStore& bodies = *in_.bodies;
+  const uint32_t stamp = uint32_t(round_) + 1;
   bool any = false;
-  for (size_t j = 0; j < pairs_.size(); ++j) {
-    const uint32_t c = pairs_[j].second;
+  later_.clear();
+  // Pairs come from the round's sorted list and, merged by height, from later_: the higher pairs of
+  // a body this round moved, taken in this round (a tower knocked over moved a block up into the
+  // one above it, which waited for the next round and was left 0.2 m deep after the last).
+  size_t j = 0;
+  while (j < pairs_.size() || !later_.empty()) {
+    const bool fromList = later_.empty() || (j < pairs_.size() && pairs_[j] < later_.front());
+    std::pair<float, uint32_t> entry;
+    float depth;
+    Vec3 normal;
+    if (fromList) {
+      entry = pairs_[j];
+      depth = ahead_[j].depth;
+      normal = ahead_[j].normal;
+      ++j;
+    } else {
+      std::pop_heap(later_.begin(), later_.end(), std::greater<>());
+      entry = later_.back();
+      later_.pop_back();
+    }
+    const uint32_t c = entry.second;
     const ContactEdge& k = in_.edges[c];
-    collidedAt_[c] = clock_;
-    float depth = ahead_[j].depth;
-    Vec3 normal = ahead_[j].normal;
     // A body an earlier pair of this round moved: the collision made ahead is stale.
-    if (std::max(movedAt_[k.a], movedAt_[k.b]) > roundStart_) collideNow(in_, k.a, k.b, depth, normal);
+    if (!fromList || std::max(movedAt_[k.a], movedAt_[k.b]) > roundStart_) collideNow(in_, k.a, k.b, depth, normal);
+    collidedAt_[c] = clock_;
     // The target is never under `keep`; a pair a later round finds where the last one left it stays.
     const float excess = depth - target(c);
     if (!(excess > kLeastMove)) continue;
@@ -213,8 +267,24 @@ bool TurnProjection::resolveRound() {
     if (ia + ib <= 0.0f) continue;
     const float share = excess / (ia + ib);
     ++clock_;
-    if (ia > 0.0f) bodies.xf[k.a].p -= (share * ia) * normal, active_[k.a] = 1, movedAt_[k.a] = clock_, any = true;
-    if (ib > 0.0f) bodies.xf[k.b].p += (share * ib) * normal, active_[k.b] = 1, movedAt_[k.b] = clock_, any = true;
+    for (const uint32_t body : {k.a, k.b}) {
+      const float inv = body == k.a ? ia : ib;
+      if (inv <= 0.0f) continue;
+      bodies.xf[body].p += (body == k.a ? -share * inv : share * inv) * normal;
+      active_[body] = 1;
+      movedAt_[body] = clock_;
+      any = true;
+      // Its pairs at or above this one, not yet queued in this round, follow in this round.
+      for (uint32_t e = pairStart_[body]; e < pairStart_[body + 1]; ++e) {
+        const uint32_t p = pairOf_[e];
+        if (queuedIn_[p] == stamp) continue;
+        const float height = in_.up.dot(bodies.xf[in_.edges[p].a].p + bodies.xf[in_.edges[p].b].p);
+        if (std::make_pair(height, p) < entry) continue;  // below: the next round takes it
+        queuedIn_[p] = stamp;
+        later_.emplace_back(height, p);
+        std::push_heap(later_.begin(), later_.end(), std::greater<>());
+      }
+    }
     ++clock_;
     ++moved_;
   }

@@ -19,9 +19,11 @@
 // as gently as the solver would part them). Lowest pairs first, and a pair whose normal is mostly
 // along `up` moves only its upper body, so a correction is not pushed back into the support below
 // (a light body under a heavy one would be driven into the ground). A body moved may now overlap
-// a neighbour: its pairs are taken in the next round, those collided earlier in the step too (a
-// box lifted 8 cm out of the box under it was left 0.107 m deep in the one resting on it, a pair
-// the first round had found apart), for up to six rounds (a poured pile of boxes needs four).
+// a neighbour: its pairs at or above the pair that moved it are taken later in the same round (a
+// column lifted from below in one round; a knocked tower moved a block into the one above it after
+// the last round and left them 0.2 m deep), those below it in the next round, pairs collided
+// earlier in the step too (a box lifted 8 cm out of the box under it was left 0.107 m deep in the
+// one resting on it, a pair the first round had found apart), for up to six rounds.
 // Pairs that cannot end deeper than their target are never collided again: no point of a body
 // moves farther in a step than dt (|v| + |w| reach), which bounds how much deeper a pair can go
 // (a resting pile's pairs, and the pairs of a turned body with neighbours a hand's width away). A
@@ -109,6 +111,7 @@ class TurnProjection {
   bool resolveRound();
 
   float target(uint32_t contact) const;
+  bool takeable(const ContactEdge& pair) const;  // a round may collide it again
   bool jointed(uint32_t body) const;
   bool movable(uint32_t body) const;
 
@@ -118,6 +121,7 @@ class TurnProjection {
   uint32_t moved_ = 0;
   uint32_t clock_ = 0;   // moves are numbered: a pair is collided again only if a body moved since
   uint32_t roundStart_ = 0;
+  int round_ = 0;
 
   /// A round's collision of one pair, made at the round's start poses.
   struct Ahead {
@@ -135,7 +139,10 @@ class TurnProjection {
   std::vector<uint8_t> held_;       // per body: pinched between immovable ones: not moved
   std::vector<uint32_t> movedAt_;     // per body: the move clock when it last moved (0: not this step)
   std::vector<uint32_t> collidedAt_;  // per contact: the move clock when it was last collided again
+  std::vector<uint32_t> pairStart_, pairOf_, fill_;  // per body: its takeable pairs (CSR)
+  std::vector<uint32_t> queuedIn_;  // per contact: the round it was last queued in, + 1
   std::vector<std::pair<float, uint32_t>> pairs_;  // (height, contact) of this round, lowest first
+  std::vector<std::pair<float, uint32_t>> later_;  // min-heap: pairs a move of this round brought in
   std::vector<Ahead> ahead_;                       // per entry of pairs_
 };
 

@@ -148,6 +148,22 @@ TEST(TurnProjection, ABodyItMovedBringsItsPairsIntoTheNextRound) {
   EXPECT_NEAR(s.bodies.xf[c].p.y(), 2.47f, 1e-4f);
 }
 
+// A column of nine boxes standing on each other, the lowest turned 0.1 m into the ground: each lift
+// pushes the box above 1 cm less deep into the next, and the whole column is lifted in one call,
+// more boxes than rounds: a move brings its body's higher pairs into the same round (a knocked tower
+// moved a block into the one above it after the last round and left the pair 0.2 m deep).
+TEST(TurnProjection, AMoveBringsTheHigherPairsOfItsBodyIntoTheSameRound) {
+  Scene s;
+  const uint32_t ground = s.add(BodyKind::Static, Shape::box(Vec3(10, 0.5f, 10)), Vec3(0, -0.5f, 0), 0);
+  std::vector<uint32_t> column;
+  for (int i = 0; i < 9; ++i) column.push_back(s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0, 0.4f + float(i), 0), 1));
+  s.pair(ground, column[0]);
+  for (int i = 0; i + 1 < 9; ++i) s.pair(column[size_t(i)], column[size_t(i) + 1]);
+  s.bodies.w[column[0]] = Vec3(0, 20.0f, 0);
+  EXPECT_EQ(s.apply(), 9u);
+  for (int i = 0; i < 9; ++i) EXPECT_NEAR(s.bodies.xf[column[size_t(i)]].p.y(), 0.49f + 0.99f * float(i), 1e-3f) << "box " << i;
+}
+
 // A 100 kg ball landing on a 1 kg box that rests on the ground: ten Gauss-Seidel sweeps pass the
 // box's support up a fraction m/(m+M) at a time, so the ball goes on sinking. It began the step 5 cm
 // in and ended 10 cm in, still falling, without turning: the 5 cm the step added go, and 2 cm of
