@@ -42,10 +42,7 @@ float TurnProjection::target(uint32_t c) const {
   return std::max(std::max(settings_.keep, std::min(start, settings_.crushKeep)), start - settings_.crushRecover);
 }
 
-bool TurnProjection::jointed(uint32_t i) const {
-  const int32_t k = in_.islandOfBody[i];
-  return k >= 0 && in_.islands->islands[k].jointCount > 0;
-}
+bool TurnProjection::jointed(uint32_t i) const { return in_.jointed != nullptr && in_.jointed[i] != 0; }
 
 bool TurnProjection::movable(uint32_t i) const {
   return in_.bodies->isAwakeDynamic(i) && !jointed(i) && !held_[i];
@@ -94,7 +91,7 @@ void TurnProjection::scanPairs(uint32_t begin, uint32_t end) {
     const float spin = spinReach_[e.a] + spinReach_[e.b];
     const float closing = dt * ((bodies.v[e.b] - bodies.v[e.a]).norm() + spin);
     if (e.count == 0 ? closing <= in_.contactMargin : e.deepest + closing <= target(c) + kCrushSlack) continue;
-    if (jointed(e.a) || jointed(e.b)) continue;  // its joints would be pulled apart
+    if (jointed(e.a) && jointed(e.b)) continue;  // neither moves: its joints would be pulled apart
     if (settings_.crushKeep <= 0.0f && !turned_[e.a] && !turned_[e.b]) continue;  // crushes left to the solver
     if (e.count == 0) {
       // Boxes from the start, each widened by how far its body may go: cheap, and most pairs stop here.
@@ -172,7 +169,7 @@ bool TurnProjection::collectCandidates() {
 bool TurnProjection::takeable(const ContactEdge& k) const {
   const BodyStore& bodies = *in_.bodies;
   if (!bodies.isAwakeDynamic(k.a) && !bodies.isAwakeDynamic(k.b)) return false;
-  return !jointed(k.a) && !jointed(k.b);  // its joints would be pulled apart
+  return !jointed(k.a) || !jointed(k.b);  // a jointed body does not move: its joints would be pulled apart
 }
 
 void TurnProjection::boxBodies(uint32_t begin, uint32_t end) {

@@ -29,9 +29,11 @@
 // (a resting pile's pairs, and the pairs of a turned body with neighbours a hand's width away). A
 // sphere's turn does not move its surface (its crushes are taken). A kinematic body does not give
 // way, as a static one: what sinks into it moves out (a turning drum pressed the bottom of its pile
-// 9 cm into its wall, the solver alone against the pile's weight). Bodies in islands with joints
-// would have their joints pulled apart, and a body pinched between immovable ones (haif/pinch.h)
-// goes out of one into the other: those are left out.
+// 9 cm into its wall, the solver alone against the pile's weight). Nor does a body with a joint
+// (its joints would be pulled apart): a crate dropped on a rope bridge moves out of the plank (it
+// sat 0.125 m in it while its whole island was left out), two jointed bodies are left to the
+// solver. A body pinched between immovable ones (haif/pinch.h) goes out of one into the other: it
+// is not moved either.
 #pragma once
 
 #include "collision/shape.h"
@@ -59,14 +61,13 @@ struct TurnProjectionSettings {
 };
 
 /// What the stage reads of the step: all narrow-phase pairs of this step with their manifolds from
-/// the step's start and their packed `edges`, the bodies at their final poses, and the step's islands.
+/// the step's start and their packed `edges`, and the bodies at their final poses.
 struct TurnProjectionInput {
   BodyStore* bodies = nullptr;
   const std::vector<Shape>* shapes = nullptr;
   const std::vector<Contact>* contacts = nullptr;
   const ContactEdge* edges = nullptr;
-  const int32_t* islandOfBody = nullptr;
-  const IslandSet* islands = nullptr;
+  const uint8_t* jointed = nullptr;   ///< per body: it has a joint (it is not moved); null: none has
   Vec3 up = Vec3::UnitY();
   const float* reach = nullptr;       ///< per body: bounding radius about its centre (m)
   const Aabb* startBounds = nullptr;  ///< per body: tight box at the step's start

@@ -115,8 +115,7 @@ uint32_t World::projectTurns() {
   in.shapes = &shapes_;
   in.contacts = &contacts_;
   in.edges = contactEdges_.data();
-  in.islandOfBody = islandOfBody_.data();
-  in.islands = &islands_;
+  in.jointed = bodies_.implicitGyro.data();  // set for every body given a joint (World::addJoint)
   in.up = upDirection();
   in.reach = speedBound_.reaches();
   in.startBounds = bounds_.data();
