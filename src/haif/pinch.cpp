@@ -46,9 +46,9 @@ uint32_t PinchDetector::mark(const BodyStore& bodies, const ContactEdge* edges, 
 uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* edges, std::vector<Contact>& contacts) {
   if (pressureOfBody_.size() < bodies.size()) pressureOfBody_.resize(bodies.size(), -1);
   pressures_.clear();
-  auto press = [&](uint32_t body, const Vec3& into, uint32_t source, uint32_t via, uint32_t from) {
+  auto press = [&](uint32_t body, const Vec3& into, const Vec3& push, uint32_t source, uint32_t via, uint32_t from) {
     pressureOfBody_[body] = int32_t(pressures_.size());
-    pressures_.push_back(Pressure{body, into, source, int32_t(via), from});
+    pressures_.push_back(Pressure{body, into, push, source, int32_t(via), from});
   };
   const uint32_t n = static_cast<uint32_t>(contacts.size());
   // Seeds: a kinematic body whose surface, where it overlaps a dynamic body, moves into it.
@@ -57,7 +57,7 @@ uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* 
     if (bodies.kind[s.other] != BodyKind::Kinematic || pressureOfBody_[s.dyn] >= 0) continue;
     const Vec3 at = contacts[k.contact].manifold.points[0].position;
     const Vec3 surface = bodies.v[s.other] + bodies.w[s.other].cross(at - bodies.xf[s.other].p);
-    if (surface.dot(s.into) > 0.0f) press(s.dyn, s.into, s.other, k.contact, s.other);
+    if (surface.dot(s.into) > 0.0f) press(s.dyn, s.into, s.into, s.other, k.contact, s.other);
   }
   if (pressures_.empty()) return 0;
   // Passed on, in contact order (the same on any thread count), to the bodies ahead.
@@ -70,23 +70,27 @@ uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* 
       if ((pa < 0) == (pb < 0)) continue;
       const Vec3& ab = contacts[ci].manifold.points[0].normal;
       if (pa >= 0 && ab.dot(pressures_[pa].into) >= kAhead) {
-        press(e.b, ab, pressures_[pa].source, ci, e.a);
+        press(e.b, ab, pressures_[pa].push, pressures_[pa].source, ci, e.a);
         grew = true;
       } else if (pb >= 0 && -ab.dot(pressures_[pb].into) >= kAhead) {
-        press(e.a, -ab, pressures_[pb].source, ci, e.b);
+        press(e.a, -ab, pressures_[pb].push, pressures_[pb].source, ci, e.b);
         grew = true;
       }
     }
     if (!grew) break;
   }
-  // Ends: a pressed body that another immovable body pushes back. (The kinematic body the pressure
-  // comes from does not close a crush of its own: a turning drum presses a pile from every side and
-  // carries it along.)
+  // Ends: a pressed body that another immovable body pushes back, against the row's push too: each
+  // link may turn the push by up to 60 degrees, and a lift raising a box under a box that leaned on
+  // a wall read as a crush (the lift then passed through the lower box). (The kinematic body the
+  // pressure comes from does not close a crush of its own: a turning drum presses a pile from every
+  // side and carries it along.)
   uint32_t crushed = 0;
   for (const Candidate& k : candidates_) {
     const Side s = sideOf(bodies, edges[k.contact], contacts[k.contact]);
     const int32_t first = pressureOfBody_[s.dyn];
-    if (first < 0 || s.other == pressures_[first].source || s.into.dot(pressures_[first].into) >= kOpposed) continue;
+    if (first < 0 || s.other == pressures_[first].source || s.into.dot(pressures_[first].into) >= kOpposed ||
+        s.into.dot(pressures_[first].push) >= kOpposed)
+      continue;
     contacts[k.contact].pinched = true;
     for (int32_t at = first; at >= 0 && !pressures_[at].crushed;) {
       Pressure& q = pressures_[at];

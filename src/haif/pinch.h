@@ -74,6 +74,7 @@ class PinchDetector {
   struct Pressure {
     uint32_t body = 0;
     Vec3 into = Vec3::Zero();  // the direction the body is pushed
+    Vec3 push = Vec3::Zero();  // the direction the kinematic body pushed the first body of the row
     uint32_t source = 0;       // the kinematic body the pressure comes from
     int32_t via = -1;          // the contact it came through
     uint32_t from = 0;         // the body on that contact's other side (== source at the first)
