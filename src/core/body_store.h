@@ -26,7 +26,9 @@ struct BodyStore {
   std::vector<float> mass;
   std::vector<float> linearDamping, angularDamping;
   std::vector<float> friction, restitution;
-  std::vector<uint8_t> implicitGyro;  ///< 1: gyroscopic term integrated implicitly (bodies with joints)
+  /// 1: the body was given a joint (World::addJoint): its gyroscopic term is integrated implicitly, and
+  /// the turn projection never moves it (haif/turn_projection.h).
+  std::vector<uint8_t> implicitGyro;
   // Sleep bookkeeping.
   std::vector<float> restTime;        ///< seconds the body has been slower than the sleep thresholds
   std::vector<uint8_t> asleep;
