@@ -87,11 +87,10 @@ void TurnProjection::scanPairs(uint32_t begin, uint32_t end) {
   for (uint32_t c = begin; c < end; ++c) {
     candidate_[c] = 0;
     const ContactEdge& e = in_.edges[c];
-    if (!bodies.isAwakeDynamic(e.a) && !bodies.isAwakeDynamic(e.b)) continue;
+    if (!takeable(e)) continue;
     const float spin = spinReach_[e.a] + spinReach_[e.b];
     const float closing = dt * ((bodies.v[e.b] - bodies.v[e.a]).norm() + spin);
     if (e.count == 0 ? closing <= in_.contactMargin : e.deepest + closing <= target(c) + kCrushSlack) continue;
-    if (jointed(e.a) && jointed(e.b)) continue;  // neither moves: its joints would be pulled apart
     if (settings_.crushKeep <= 0.0f && !turned_[e.a] && !turned_[e.b]) continue;  // crushes left to the solver
     if (e.count == 0) {
       // Boxes from the start, each widened by how far its body may go: cheap, and most pairs stop here.
@@ -201,7 +200,7 @@ bool TurnProjection::gatherRound(int round) {
   if (round == 0) {
     const uint32_t pairCount = uint32_t(in_.contacts->size());
     for (uint32_t c = 0; c < pairCount; ++c)
-      if (candidate_[c] == 1 && takeable(in_.edges[c])) take(c);
+      if (candidate_[c] == 1) take(c);  // the scan took only takeable pairs
   } else {
     for (uint32_t i = 0; i < uint32_t(active_.size()); ++i)
       if (active_[i])
