@@ -3,6 +3,7 @@
 #include "collision/collide.h"
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <limits>
 
@@ -16,6 +17,9 @@ constexpr float kStacked = 0.5f;
 constexpr float kCrushSlack = 0.005f;
 /// Excess depth (m) below which a pair is not moved: rounding after a pair was moved to its target.
 constexpr float kLeastMove = 1e-4f;
+/// Added to a depth bound before it decides that a pair need not be collided: the rounding of the
+/// collision that found the depth (m).
+constexpr float kBoundRounding = 1e-5f;
 
 /// The deepest point of a pair collided at the bodies' current poses (depth -inf: no point).
 void collideNow(const TurnProjectionInput& in, uint32_t a, uint32_t b, float& depth, Vec3& normal) {
@@ -42,6 +46,17 @@ float TurnProjection::target(uint32_t c) const {
   return std::max(std::max(settings_.keep, std::min(start, settings_.crushKeep)), start - settings_.crushRecover);
 }
 
+bool TurnProjection::mayExceed(uint32_t c) const {
+  const ContactEdge& e = in_.edges[c];
+  const float bound = known_[c] + (odometer_[e.a] + odometer_[e.b] - knownAt_[c]) + kBoundRounding;
+  return bound > target(c) + kLeastMove;
+}
+
+void TurnProjection::noteDepth(uint32_t c, float depth, float odometers) {
+  known_[c] = std::isfinite(depth) ? depth : 0.0f;  // no point at margin 0: apart
+  knownAt_[c] = odometers;
+}
+
 bool TurnProjection::jointed(uint32_t i) const { return in_.jointed != nullptr && in_.jointed[i] != 0; }
 
 bool TurnProjection::movable(uint32_t i) const {
@@ -49,14 +64,16 @@ bool TurnProjection::movable(uint32_t i) const {
 }
 
 bool TurnProjection::begin(const TurnProjectionInput& in, const TurnProjectionSettings& settings) {
+  moved_ = 0;
+  collisions_ = 0;
   if (settings.angle <= 0.0f) return false;
   in_ = in;
   settings_ = settings;
-  moved_ = 0;
   const size_t n = in.bodies->size(), pairCount = in.contacts->size();
   turned_.resize(n);
   spinReach_.resize(n);
   candidate_.resize(pairCount);
+  known_.resize(pairCount);
   return pairCount > 0;
 }
 
@@ -90,12 +107,16 @@ void TurnProjection::scanPairs(uint32_t begin, uint32_t end) {
     if (!takeable(e)) continue;
     const float spin = spinReach_[e.a] + spinReach_[e.b];
     const float closing = dt * ((bodies.v[e.b] - bodies.v[e.a]).norm() + spin);
+    // The bound at the step's end: the start depth and how far the pair may close (a pair without
+    // points began farther apart than the margin).
+    known_[c] = e.count == 0 ? closing - in_.contactMargin : e.deepest + closing;
     if (e.count == 0 ? closing <= in_.contactMargin : e.deepest + closing <= target(c) + kCrushSlack) continue;
     if (settings_.crushKeep <= 0.0f && !turned_[e.a] && !turned_[e.b]) continue;  // crushes left to the solver
     if (e.count == 0) {
       // Boxes from the start, each widened by how far its body may go: cheap, and most pairs stop here.
       const float da = dt * (bodies.v[e.a].norm() + spinReach_[e.a]), db = dt * (bodies.v[e.b].norm() + spinReach_[e.b]);
       if (in_.startBounds[e.a].expanded(da + db).overlaps(in_.startBounds[e.b])) candidate_[c] = 2;
+      else known_[c] = 0.0f;  // the boxes stay apart
       continue;
     }
     if (turned_[e.a] || turned_[e.b]) {
@@ -159,6 +180,8 @@ bool TurnProjection::collectCandidates() {
   }
   active_.assign(n, 0);
   movedAt_.assign(n, 0);
+  odometer_.assign(n, 0.0f);
+  knownAt_.assign(pairCount, 0.0f);
   collidedAt_.assign(pairCount, 0);
   queuedIn_.assign(pairCount, 0);
   clock_ = 1;
@@ -180,6 +203,7 @@ void TurnProjection::boxPairs() {
   for (uint32_t c : boxPairs_) {
     const ContactEdge& e = in_.edges[c];
     candidate_[c] = finalBox_[e.a].overlaps(finalBox_[e.b]) ? 1 : 0;
+    if (candidate_[c] == 0) known_[c] = 0.0f;  // the final boxes are apart
   }
 }
 
@@ -194,6 +218,7 @@ bool TurnProjection::gatherRound(int round) {
     const ContactEdge& k = in_.edges[c];
     if (queuedIn_[c] == stamp) return;
     if (collidedAt_[c] != 0 && std::max(movedAt_[k.a], movedAt_[k.b]) < collidedAt_[c]) return;
+    if (round > 0 && !mayExceed(c)) return;
     queuedIn_[c] = stamp;
     pairs_.emplace_back(in_.up.dot(bodies.xf[k.a].p + bodies.xf[k.b].p), c);
   };
@@ -218,6 +243,7 @@ void TurnProjection::collideAhead(uint32_t begin, uint32_t end) {
   for (uint32_t j = begin; j < end; ++j) {
     const ContactEdge& k = in_.edges[pairs_[j].second];
     collideNow(in_, k.a, k.b, ahead_[j].depth, ahead_[j].normal);
+    ahead_[j].odometers = odometer_[k.a] + odometer_[k.b];
   }
 }
 
@@ -247,8 +273,15 @@ bool TurnProjection::resolveRound() {
     }
     const uint32_t c = entry.second;
     const ContactEdge& k = in_.edges[c];
-    // A body an earlier pair of this round moved: the collision made ahead is stale.
-    if (!fromList || std::max(movedAt_[k.a], movedAt_[k.b]) > roundStart_) collideNow(in_, k.a, k.b, depth, normal);
+    if (fromList) noteDepth(c, depth, ahead_[j - 1].odometers);
+    // A body an earlier pair of this round moved: the collision made ahead is stale, unless the
+    // bound says that it still cannot be deep enough to move.
+    if (!fromList || std::max(movedAt_[k.a], movedAt_[k.b]) > roundStart_) {
+      if (!mayExceed(c)) continue;
+      collideNow(in_, k.a, k.b, depth, normal);
+      ++collisions_;
+      noteDepth(c, depth, odometer_[k.a] + odometer_[k.b]);
+    }
     collidedAt_[c] = clock_;
     // The target is never under `keep`; a pair a later round finds where the last one left it stays.
     const float excess = depth - target(c);
@@ -267,13 +300,14 @@ bool TurnProjection::resolveRound() {
       const float inv = body == k.a ? ia : ib;
       if (inv <= 0.0f) continue;
       bodies.xf[body].p += (body == k.a ? -share * inv : share * inv) * normal;
+      odometer_[body] += share * inv;
       active_[body] = 1;
       movedAt_[body] = clock_;
       any = true;
       // Its pairs at or above this one, not yet queued in this round, follow in this round.
       for (uint32_t e = pairStart_[body]; e < pairStart_[body + 1]; ++e) {
         const uint32_t p = pairOf_[e];
-        if (queuedIn_[p] == stamp) continue;
+        if (queuedIn_[p] == stamp || !mayExceed(p)) continue;  // a later move may still bring it in
         const float height = in_.up.dot(bodies.xf[in_.edges[p].a].p + bodies.xf[in_.edges[p].b].p);
         if (std::make_pair(height, p) < entry) continue;  // below: the next round takes it
         queuedIn_[p] = stamp;

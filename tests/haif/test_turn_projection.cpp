@@ -157,10 +157,37 @@ TEST(TurnProjection, AMoveBringsTheHigherPairsOfItsBodyIntoTheSameRound) {
   std::vector<uint32_t> column;
   for (int i = 0; i < 9; ++i) column.push_back(s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0, 0.4f + float(i), 0), 1));
   s.pair(ground, column[0]);
-  for (int i = 0; i + 1 < 9; ++i) s.pair(column[size_t(i)], column[size_t(i) + 1]);
+  // Touching: the narrow phase found a point at depth 0 (a pair without points began the step
+  // farther apart than its margin).
+  for (int i = 0; i + 1 < 9; ++i) s.pairAt(column[size_t(i)], column[size_t(i) + 1], Vec3(0, 0.9f + float(i), 0), Vec3::UnitY(), 0.0f);
   s.bodies.w[column[0]] = Vec3(0, 20.0f, 0);
   EXPECT_EQ(s.apply(), 9u);
   for (int i = 0; i < 9; ++i) EXPECT_NEAR(s.bodies.xf[column[size_t(i)]].p.y(), 0.49f + 0.99f * float(i), 1e-3f) << "box " << i;
+}
+
+// A box 4 cm in the ground is lifted 1 cm (to the 3 cm it may keep) between two neighbours it
+// touches. Its pairs with them are not collided again: no point of it moved more than 1 cm, and a
+// pair that touched cannot now be deeper than that, nor than the 1 cm it may keep. Only its ground
+// pair is, to see that it is out (2 collisions). A neighbour pressed 5 mm into it may now be 1.5 cm
+// deep: that pair is collided again (3), and left, being no deeper than it was.
+TEST(TurnProjection, APairItsMovesCannotHaveCarriedPastItsTargetIsNotCollidedAgain) {
+  for (const float pressed : {0.0f, 0.005f}) {
+    Scene s;
+    const uint32_t ground = s.add(BodyKind::Static, Shape::box(Vec3(10, 0.5f, 10)), Vec3(0, -0.5f, 0), 0);
+    const uint32_t box = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0, 0.46f, 0), 1);
+    const uint32_t left = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(-1.0f + pressed, 0.5f, 0), 1);
+    const uint32_t right = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(1.0f, 0.5f, 0), 1);
+    s.pairAt(ground, box, Vec3(0, -0.02f, 0), Vec3::UnitY(), 0.04f);
+    s.pairAt(ground, left, Vec3(-1.0f, 0, 0), Vec3::UnitY(), 0.0f);
+    s.pairAt(ground, right, Vec3(1.0f, 0, 0), Vec3::UnitY(), 0.0f);
+    s.pairAt(left, box, Vec3(-0.5f, 0.5f, 0), Vec3::UnitX(), pressed);
+    s.pairAt(box, right, Vec3(0.5f, 0.5f, 0), Vec3::UnitX(), 0.0f);
+    EXPECT_EQ(s.apply(), 1u) << pressed;
+    EXPECT_NEAR(s.bodies.xf[box].p.y(), 0.47f, 1e-4f);
+    EXPECT_EQ(s.projection.collisions(), pressed > 0.0f ? 3u : 2u) << pressed;
+    EXPECT_EQ(s.bodies.xf[left].p, Vec3(-1.0f + pressed, 0.5f, 0));
+    EXPECT_EQ(s.bodies.xf[right].p, Vec3(1.0f, 0.5f, 0));
+  }
 }
 
 // A 100 kg ball landing on a 1 kg box that rests on the ground: ten Gauss-Seidel sweeps pass the
