@@ -39,6 +39,57 @@ inline bool anyLane(GaussI m) {
   for (const uint64_t x : w) any |= x;
   return any != 0;
 }
+// A polyhedron's vertices by coordinate, kGaussLanes to a vector: the separating-axis tests project
+// every vertex on each axis they try (one vertex after another, each min waiting on the last, that
+// was a fifth of a hull pair's time). Past kMaxLaneVerts a hull takes PolyView's loops.
+constexpr int kMaxLaneVerts = 64;
+struct VertexLanes {
+  alignas(32) float x[kMaxLaneVerts], y[kMaxLaneVerts], z[kMaxLaneVerts];
+  const PolyView* poly = nullptr;
+  int lanes = 0;  // 0: too many vertices
+
+  explicit VertexLanes(const PolyView& P) : poly(&P) {
+    if (P.numVerts > kMaxLaneVerts) return;
+    lanes = (P.numVerts + kGaussLanes - 1) / kGaussLanes * kGaussLanes;
+    for (int i = 0; i < lanes; ++i) {
+      const Vec3& v = P.verts[i < P.numVerts ? i : 0];  // the padding repeats a vertex
+      x[i] = v.x(), y[i] = v.y(), z[i] = v.z();
+    }
+  }
+  GaussF project(int j, const Vec3& d) const {
+    GaussF px, py, pz;
+    std::memcpy(&px, x + j, sizeof(px));
+    std::memcpy(&py, y + j, sizeof(py));
+    std::memcpy(&pz, z + j, sizeof(pz));
+    return px * d.x() + py * d.y() + pz * d.z();
+  }
+  static float least(GaussF v) {
+    float r = v[0];
+    for (int k = 1; k < kGaussLanes; ++k) r = std::min(r, v[k]);
+    return r;
+  }
+  float minDot(const Vec3& d) const {
+    if (lanes == 0) return poly->minDot(d);
+    GaussF lo = project(0, d);
+    for (int j = kGaussLanes; j < lanes; j += kGaussLanes) {
+      const GaussF p = project(j, d);
+      lo = p < lo ? p : lo;
+    }
+    return least(lo);
+  }
+  void interval(const Vec3& d, float& lo, float& hi) const {
+    if (lanes == 0) return poly->interval(d, lo, hi);
+    GaussF l = project(0, d), h = l;
+    for (int j = kGaussLanes; j < lanes; j += kGaussLanes) {
+      const GaussF p = project(j, d);
+      l = p < l ? p : l;
+      h = p > h ? p : h;
+    }
+    lo = least(l);
+    hi = -least(-h);
+  }
+};
+
 // How much farther apart than their separation and the margin two edges may be and still make the
 // contact (m).
 constexpr float kEdgeGapTol = 1e-3f;
@@ -61,7 +112,7 @@ int supportingEdge(const PolyView& P, int e, const Vec3& d) {
 }
 
 // How far B stays beyond A along L (A's frame; B turned by R and moved by t): negative overlaps.
-float supportSeparation(const PolyView& A, const PolyView& B, const Mat3& R, const Vec3& t, const Vec3& L) {
+float supportSeparation(const VertexLanes& A, const VertexLanes& B, const Mat3& R, const Vec3& t, const Vec3& L) {
   float aLo, aHi;
   A.interval(L, aLo, aHi);
   return B.minDot(R.transpose() * L) + t.dot(L) - aHi;
@@ -76,13 +127,14 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
   const Mat3 R = Ra.transpose() * xb.q.toRotationMatrix();  // B -> A rotation
   const Vec3 t = Ra.transpose() * (xb.p - xa.p);
   const Mat3 Rt = R.transpose();
+  const VertexLanes vertsA(A), vertsB(B);
 
   // Faces of A: how far B's vertices stay above each plane.
   float sepA = -1e30f;
   int faceA = -1;
   for (int f = 0; f < A.numFaces; ++f) {
     const ConvexHull::Face& F = A.faces[f];
-    const float s = B.minDot(Rt * F.normal) + t.dot(F.normal) - F.offset;
+    const float s = vertsB.minDot(Rt * F.normal) + t.dot(F.normal) - F.offset;
     if (s > margin) return 0;
     if (s > sepA) { sepA = s; faceA = f; }
   }
@@ -92,7 +144,7 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
   for (int f = 0; f < B.numFaces; ++f) {
     const ConvexHull::Face& F = B.faces[f];
     const Vec3 n = R * F.normal;
-    const float s = A.minDot(n) - (F.offset + t.dot(n));
+    const float s = vertsA.minDot(n) - (F.offset + t.dot(n));
     if (s > margin) return 0;
     if (s > sepB) { sepB = s; faceB = f; }
   }
@@ -151,7 +203,7 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
           // negated normal is the other's face normal to float precision) the sign tests are noise,
           // and over a long edge a tilt of 1e-5 put a hull 6 mm above a 1000 m ground box it rested
           // on: the edge contact won and made one point 250 m away. The supports decide instead.
-          s = supportSeparation(A, B, R, t, L);
+          s = supportSeparation(vertsA, vertsB, R, t, L);
           if (s > margin) return 0;
           if (s > sepE) { sepE = s; edgeA = i; edgeB = j; edgeAxis = L; }
         }
@@ -168,8 +220,8 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
         if (l2 < 1e-8f * da.squaredNorm() * db.squaredNorm()) continue;  // parallel edges
         L /= std::sqrt(l2);
         float aLo, aHi, bLo, bHi;
-        A.interval(L, aLo, aHi);
-        B.interval(Rt * L, bLo, bHi);
+        vertsA.interval(L, aLo, aHi);
+        vertsB.interval(Rt * L, bLo, bHi);
         const float tl = t.dot(L);
         bLo += tl;
         bHi += tl;
