@@ -29,6 +29,9 @@ struct BodyStore {
   /// 1: the body was given a joint (World::addJoint): its gyroscopic term is integrated implicitly, and
   /// the turn projection never moves it (haif/turn_projection.h).
   std::vector<uint8_t> implicitGyro;
+  /// 1: the body hangs from one fixed point by its only joint, a ball joint to the world or a static
+  /// body (World::findPinnedBodies): it turns about that point (integratePinned), not about its centre.
+  std::vector<uint8_t> pinned;
   // Sleep bookkeeping.
   std::vector<float> restTime;        ///< seconds the body has been slower than the sleep thresholds
   std::vector<uint8_t> asleep;
@@ -61,6 +64,7 @@ struct BodyStore {
     friction.push_back(0.6f);
     restitution.push_back(0.0f);
     implicitGyro.push_back(0);
+    pinned.push_back(0);
     restTime.push_back(0.0f);
     asleep.push_back(0);
     sleepSet.push_back(-1);

@@ -70,7 +70,7 @@ void integratePositions(BodyStore& b, uint32_t begin, uint32_t end, float dt, fl
   const float lin2 = sleepLinear * sleepLinear, ang2 = sleepAngular * sleepAngular;
   for (uint32_t i = begin; i < end; ++i) {
     const BodyKind k = b.kind[i];
-    if (k == BodyKind::Static || b.asleep[i]) continue;
+    if (k == BodyKind::Static || b.asleep[i] || b.pinned[i]) continue;
     Transform& xf = b.xf[i];
     xf.p += dt * b.v[i];
     const Vec3 w = b.w[i];
@@ -110,6 +110,31 @@ void integratePositions(BodyStore& b, uint32_t begin, uint32_t end, float dt, fl
     const bool slow = b.v[i].squaredNorm() < lin2 && b.w[i].squaredNorm() < ang2;
     b.restTime[i] = slow ? b.restTime[i] + dt : 0.0f;
   }
+}
+
+void integratePinned(BodyStore& b, const PinnedBody& pin, float dt, float sleepLinear, float sleepAngular) {
+  const uint32_t i = pin.body;
+  if (b.asleep[i]) return;
+  Transform& xf = b.xf[i];
+  const Vec3& a = pin.anchor;
+  // Inertia about the held point (parallel axes), body frame.
+  const Mat3 I = b.inertiaLocal[i] + b.mass[i] * (a.squaredNorm() * Mat3::Identity() - a * a.transpose());
+  const Mat3 invI = I.inverse();
+  const Quat qOld = xf.q;
+  // Angular momentum about the point, from both velocities: what the solve left of the motion that
+  // the joint does not hold (a contact's push) keeps its moment about the point.
+  const Vec3 wOld = qOld.conjugate() * b.w[i];
+  const Vec3 L0 = b.inertiaLocal[i] * wOld + b.mass[i] * (qOld.conjugate() * Vec3((xf.p - pin.point).cross(b.v[i])));
+  const Vec3 wb = invI * L0;
+  const Vec3 wm = midpointBodyAngularVelocity(I, invI, wb, L0, dt);
+  const Quat qNew = (qOld * Quat(1.0f, 0.5f * dt * wm.x(), 0.5f * dt * wm.y(), 0.5f * dt * wm.z())).normalized();
+  xf.q = qNew;
+  b.w[i] = qNew * (invI * (qNew.conjugate() * (qOld * L0)));
+  xf.p = pin.point - qNew * a;
+  b.v[i] = b.w[i].cross(xf.p - pin.point);
+  b.updateWorldInertia(i);
+  const bool slow = b.v[i].squaredNorm() < sleepLinear * sleepLinear && b.w[i].squaredNorm() < sleepAngular * sleepAngular;
+  b.restTime[i] = slow ? b.restTime[i] + dt : 0.0f;
 }
 
 }  // namespace haif

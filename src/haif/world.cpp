@@ -159,6 +159,7 @@ void World::step() {
   if (!joints_.empty()) {
     stats_.stages |= kStageJoints;
     wakeJointedBodies();
+    findPinnedBodies();
   }
   islandBuilder_.build(bodies_, contactEdges_.data(), uint32_t(contactEdges_.size()), joints_, islands_);
   if (settings_.topDownOrder) orderContactsTopDown();
@@ -201,6 +202,7 @@ void World::step() {
     dampRestingMotion(bodies_, islandOfBody_.data(), islands_, restSpeed, b, e);
     integratePositions(bodies_, b, e, dt, settings_.sleepLinear, settings_.sleepAngular);
   });
+  for (const PinnedBody& pin : pins_) integratePinned(bodies_, pin, dt, settings_.sleepLinear, settings_.sleepAngular);
   const auto t3 = Clock::now();
   relaxIslands(relax);
   boundSpeeds();

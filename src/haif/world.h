@@ -11,6 +11,7 @@
 #include "dynamics/contact.h"
 #include "dynamics/contact_chain.h"
 #include "dynamics/contact_solver.h"
+#include "dynamics/integrator.h"
 #include "dynamics/joint_solver.h"
 #include "dynamics/joint_tree.h"
 #include "haif/island_split.h"
@@ -134,6 +135,7 @@ class World {
   SweepResult sweepIsland(uint32_t island, bool useBias, bool restartDirection = false, bool measureChange = false);
   void shareSpareIterations(int iterations);
   void relaxIslands(int relaxIterations);
+  bool onlyPinned(uint32_t island) const;  // every body of the island is pinned (BodyStore::pinned)
   void summariseIterations();
   SolverParams solverParams() const;
   /// Runs over the islands in parallel, batched (batchStart_), in two phases per batch: first(k) for
@@ -151,6 +153,7 @@ class World {
   void prepareJoints(uint32_t island, const SolverParams& sp);
   void finishJoints(uint32_t island);
   void breakJoints();
+  void findPinnedBodies();
   void measureJointErrors();
   template <class F> void parallelFor(uint32_t n, uint32_t grain, F&& f);
 
@@ -218,6 +221,8 @@ class World {
   std::vector<JointTree> jointTrees_;              // per island slot: factorisation buffers, reused
   std::vector<float> jointStiffness_;              // per body, this step (N m)
   PairMap jointPairs_;  // body pair -> number of unbroken joints that keep the two from colliding
+  std::vector<PinnedBody> pins_;          // this step's pinned bodies (findPinnedBodies)
+  std::vector<uint8_t> jointsOfBody_;     // findPinnedBodies' scratch: unbroken joints per body (capped)
 
   SleepSets sleepSets_;  // the sleeping islands (world_sleep.cpp)
 

@@ -48,6 +48,34 @@ void World::wakeJointedBodies() {
   }
 }
 
+// Bodies whose only unbroken joint is a ball joint to the world or a static body turn about its
+// anchor (integratePinned). Found every step: joints break, and their defs may be edited.
+void World::findPinnedBodies() {
+  std::fill(bodies_.pinned.begin(), bodies_.pinned.end(), 0);
+  jointsOfBody_.assign(bodyCount(), 0);
+  auto fixed = [&](uint32_t b) { return b == kWorldBody || bodies_.kind[b] == BodyKind::Static; };
+  for (const Joint& j : joints_) {
+    if (j.broken) continue;
+    for (uint32_t b : {j.def.bodyA, j.def.bodyB})
+      if (!fixed(b) && jointsOfBody_[b] < 2) ++jointsOfBody_[b];
+  }
+  pins_.clear();
+  for (const Joint& j : joints_) {
+    const JointDef& d = j.def;
+    if (j.broken || d.type != JointType::Ball || fixed(d.bodyA) == fixed(d.bodyB)) continue;
+    const bool bodyIsB = fixed(d.bodyA);
+    const uint32_t body = bodyIsB ? d.bodyB : d.bodyA, holder = bodyIsB ? d.bodyA : d.bodyB;
+    if (bodies_.kind[body] != BodyKind::Dynamic || jointsOfBody_[body] != 1) continue;
+    PinnedBody pin;
+    pin.body = body;
+    pin.anchor = bodyIsB ? d.localAnchorB : d.localAnchorA;
+    const Vec3& held = bodyIsB ? d.localAnchorA : d.localAnchorB;
+    pin.point = holder == kWorldBody ? held : bodies_.xf[holder].apply(held);
+    pins_.push_back(pin);
+    bodies_.pinned[body] = 1;
+  }
+}
+
 // After the solve: joints whose force or torque went over their threshold break (in index order, so
 // the outcome does not depend on threads). Their bodies collide again from the next step.
 void World::breakJoints() {

@@ -195,6 +195,13 @@ void World::shareSpareIterations(int iterations) {
   });
 }
 
+bool World::onlyPinned(uint32_t k) const {
+  const Island& isl = islands_.islands[k];
+  for (uint32_t j = 0; j < isl.bodyCount; ++j)
+    if (!bodies_.pinned[islands_.bodies[isl.firstBody + j]]) return false;
+  return isl.bodyCount > 0;
+}
+
 void World::relaxIslands(int relaxIterations) {
   const SolverParams sp = solverParams();
   auto relax = [&](uint32_t k) {
@@ -216,6 +223,10 @@ void World::relaxIslands(int relaxIterations) {
         });
       }
     }
+    // An island of pinned bodies without contacts holds its joints exactly after integration
+    // (integratePinned); its rows are the step start's, and sweeping them there took a spinning
+    // top's spin down by 7 % in 5 s.
+    if (islands_.islands[k].contactCount == 0 && onlyPinned(k)) return;
     for (int it = 0; it < relaxIterations; ++it) sweepIsland(k, false);
   };
   auto store = [&](uint32_t k) {
