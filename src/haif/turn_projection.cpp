@@ -87,7 +87,12 @@ void TurnProjection::scanBodies(uint32_t begin, uint32_t end) {
     // A body without a reach (a mesh) that turns, a kinematic one, is bounded by nothing.
     const bool unbounded = in_.reach[i] <= 0.0f && spin > 0.0f && !sphere;
     spinReach_[i] = sphere ? 0.0f : unbounded ? std::numeric_limits<float>::infinity() : spin * in_.reach[i];
-    turned_[i] = spin > limit && !sphere;
+    // Or its turn moves its surface farther than the narrow phase's margin: features of a pair that
+    // were apart by more than that at the start (not among its points) may meet within the step (a
+    // 1080 kg block of `tower_collapse` turning at 4 rad/s, 0.07 rad a step, went 13 cm into the
+    // next while their one point, read linearly, said they would part).
+    const bool sweeps = bodies.isDynamic(i) && !unbounded && spinReach_[i] * in_.dt > in_.contactMargin;
+    turned_[i] = (spin > limit || sweeps) && !sphere;
   }
 }
 

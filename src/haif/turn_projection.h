@@ -53,7 +53,9 @@ namespace haif {
 
 struct TurnProjectionSettings {
   /// A body counts as turned when |ω| dt exceeds this (rad): a linearisation about the step's
-  /// first points holds to a few mm below it for bodies of a metre. 0 turns the stage off.
+  /// first points holds to a few mm below it for bodies of a metre. A dynamic body also counts when
+  /// its turn moves its surface farther than the narrow phase's margin in a step (|ω| reach dt):
+  /// features that were not among its pairs' points may then meet. 0 turns the stage off.
   float angle = 0.1f;
   /// Depth (m) left in place: the solver's own push-out settles shallow overlap gently.
   float keep = 0.01f;
