@@ -50,6 +50,25 @@ Vec3 midpointBodyAngularVelocity(const Mat3& I, const Mat3& invI, const Vec3& wb
   return wm;
 }
 
+// The implicit midpoint rule's turn of a body free to turn (inertia I in its frame, angular velocity
+// wb and momentum L0 there): q turns by the Cayley rotation of dt w_mid, and the returned world w reads
+// the unchanged world L in the new frame, so |L| and the energy are kept. w = I⁻¹ L is taken in the
+// body frame, not through the world inverse inertia: for a thin body that matrix mixes 1/I of very
+// different sizes in every entry, and its rounding turned L by ~1e-7 a step (a thin capsule's |L|
+// drifted by 6e-5 in 600 steps at -O3 and 1.8e-4 at -O2; now 2e-5 at both).
+Vec3 turnFreely(Quat& q, const Mat3& I, const Mat3& invI, const Vec3& wb, const Vec3& L0, float dt) {
+  const Quat qOld = q;
+  const Vec3 wm = midpointBodyAngularVelocity(I, invI, wb, L0, dt);
+  q = (qOld * Quat(1.0f, 0.5f * dt * wm.x(), 0.5f * dt * wm.y(), 0.5f * dt * wm.z())).normalized();
+  return q * (invI * (q.conjugate() * (qOld * L0)));
+}
+
+// The rest timer sleeping reads: how long the body has been slower than both thresholds (squared).
+void noteRest(BodyStore& b, uint32_t i, float dt, float lin2, float ang2) {
+  const bool slow = b.v[i].squaredNorm() < lin2 && b.w[i].squaredNorm() < ang2;
+  b.restTime[i] = slow ? b.restTime[i] + dt : 0.0f;
+}
+
 }  // namespace
 
 void integrateVelocities(BodyStore& b, uint32_t begin, uint32_t end, const Vec3& gravity, float dt) {
@@ -78,21 +97,11 @@ void integratePositions(BodyStore& b, uint32_t begin, uint32_t end, float dt, fl
     const bool freeBody = k == BodyKind::Dynamic && !b.implicitGyro[i];
     const Vec3 u = b.invInertiaWorld[i] * w;
     if (spinning && freeBody && u.cross(w).squaredNorm() > kPrincipal2 * u.squaredNorm() * w.squaredNorm()) {
-      // Free body: the exact midpoint rule. Turn by the Cayley rotation of dt w_mid (body frame), then
-      // read w from the unchanged world L in the new frame: |L| and the energy are kept.
+      // Free body: the exact midpoint rule (turnFreely).
       const Mat3& I = b.inertiaLocal[i];
-      const Quat qOld = xf.q;
-      const Vec3 wb = qOld.conjugate() * w;
-      const Vec3 L0 = I * wb;
-      const Vec3 wm = midpointBodyAngularVelocity(I, b.invInertiaLocal[i], wb, L0, dt);
-      const Quat qNew = (qOld * Quat(1.0f, 0.5f * dt * wm.x(), 0.5f * dt * wm.y(), 0.5f * dt * wm.z())).normalized();
-      xf.q = qNew;
+      const Vec3 wb = xf.q.conjugate() * w;
+      b.w[i] = turnFreely(xf.q, I, b.invInertiaLocal[i], wb, I * wb, dt);
       b.updateWorldInertia(i);
-      // w = I⁻¹ L taken in the body frame, not through the world inverse inertia: for a thin body
-      // that matrix mixes 1/I of very different sizes in every entry, and its rounding turned L by
-      // ~1e-7 a step (a thin capsule's |L| drifted by 6e-5 in 600 steps at -O3
-      // and 1.8e-4 at -O2; now 2e-5 at both).
-      b.w[i] = qNew * (b.invInertiaLocal[i] * (qNew.conjugate() * (qOld * L0)));
     } else {
       // Kinematic, jointed, or free and spinning about a principal axis (w kept).
       if (spinning) xf.q = cayleyTurn(xf.q, w, dt);
@@ -107,8 +116,7 @@ void integratePositions(BodyStore& b, uint32_t begin, uint32_t end, float dt, fl
       }
       b.updateWorldInertia(i);
     }
-    const bool slow = b.v[i].squaredNorm() < lin2 && b.w[i].squaredNorm() < ang2;
-    b.restTime[i] = slow ? b.restTime[i] + dt : 0.0f;
+    noteRest(b, i, dt, lin2, ang2);
   }
 }
 
@@ -125,16 +133,11 @@ void integratePinned(BodyStore& b, const PinnedBody& pin, float dt, float sleepL
   // the joint does not hold (a contact's push) keeps its moment about the point.
   const Vec3 wOld = qOld.conjugate() * b.w[i];
   const Vec3 L0 = b.inertiaLocal[i] * wOld + b.mass[i] * (qOld.conjugate() * Vec3((xf.p - pin.point).cross(b.v[i])));
-  const Vec3 wb = invI * L0;
-  const Vec3 wm = midpointBodyAngularVelocity(I, invI, wb, L0, dt);
-  const Quat qNew = (qOld * Quat(1.0f, 0.5f * dt * wm.x(), 0.5f * dt * wm.y(), 0.5f * dt * wm.z())).normalized();
-  xf.q = qNew;
-  b.w[i] = qNew * (invI * (qNew.conjugate() * (qOld * L0)));
-  xf.p = pin.point - qNew * a;
+  b.w[i] = turnFreely(xf.q, I, invI, invI * L0, L0, dt);
+  xf.p = pin.point - xf.q * a;
   b.v[i] = b.w[i].cross(xf.p - pin.point);
   b.updateWorldInertia(i);
-  const bool slow = b.v[i].squaredNorm() < sleepLinear * sleepLinear && b.w[i].squaredNorm() < sleepAngular * sleepAngular;
-  b.restTime[i] = slow ? b.restTime[i] + dt : 0.0f;
+  noteRest(b, i, dt, sleepLinear * sleepLinear, sleepAngular * sleepAngular);
 }
 
 }  // namespace haif

@@ -50,16 +50,19 @@ void World::wakeJointedBodies() {
 
 // Bodies whose only unbroken joint is a ball joint to the world or a static body turn about its
 // anchor (integratePinned). Found every step: joints break, and their defs may be edited.
+// Touches only the joints' bodies and the last step's pins, not every body.
 void World::findPinnedBodies() {
-  std::fill(bodies_.pinned.begin(), bodies_.pinned.end(), 0);
-  jointsOfBody_.assign(bodyCount(), 0);
-  auto fixed = [&](uint32_t b) { return b == kWorldBody || bodies_.kind[b] == BodyKind::Static; };
-  for (const Joint& j : joints_) {
-    if (j.broken) continue;
-    for (uint32_t b : {j.def.bodyA, j.def.bodyB})
-      if (!fixed(b) && jointsOfBody_[b] < 2) ++jointsOfBody_[b];
-  }
+  for (const PinnedBody& pin : pins_) bodies_.pinned[pin.body] = 0;
   pins_.clear();
+  if (jointsOfBody_.size() < bodyCount()) jointsOfBody_.resize(bodyCount(), 0);  // zero between calls
+  auto fixed = [&](uint32_t b) { return b == kWorldBody || bodies_.kind[b] == BodyKind::Static; };
+  auto forJointedBodies = [&](auto&& f) {
+    for (const Joint& j : joints_)
+      if (!j.broken)
+        for (uint32_t b : {j.def.bodyA, j.def.bodyB})
+          if (!fixed(b)) f(jointsOfBody_[b]);
+  };
+  forJointedBodies([](uint8_t& n) { n = uint8_t(std::min(2, n + 1)); });
   for (const Joint& j : joints_) {
     const JointDef& d = j.def;
     if (j.broken || d.type != JointType::Ball || fixed(d.bodyA) == fixed(d.bodyB)) continue;
@@ -74,6 +77,7 @@ void World::findPinnedBodies() {
     pins_.push_back(pin);
     bodies_.pinned[body] = 1;
   }
+  forJointedBodies([](uint8_t& n) { n = 0; });
 }
 
 // After the solve: joints whose force or torque went over their threshold break (in index order, so
