@@ -20,6 +20,16 @@ inline F4 load(const float* p) {
 
 inline void store(float* p, F4 v) { std::memcpy(p, &v, sizeof v); }
 
+/// The 4 × 4 block whose rows are r0..r3, as its columns c0..c3 (c0 = {r0[0], r1[0], r2[0], r3[0]}).
+inline void transpose(F4 r0, F4 r1, F4 r2, F4 r3, F4& c0, F4& c1, F4& c2, F4& c3) {
+  const F4 lo01 = __builtin_shuffle(r0, r1, I4{0, 4, 1, 5}), lo23 = __builtin_shuffle(r2, r3, I4{0, 4, 1, 5});
+  const F4 hi01 = __builtin_shuffle(r0, r1, I4{2, 6, 3, 7}), hi23 = __builtin_shuffle(r2, r3, I4{2, 6, 3, 7});
+  c0 = __builtin_shuffle(lo01, lo23, I4{0, 1, 4, 5});
+  c1 = __builtin_shuffle(lo01, lo23, I4{2, 3, 6, 7});
+  c2 = __builtin_shuffle(hi01, hi23, I4{0, 1, 4, 5});
+  c3 = __builtin_shuffle(hi01, hi23, I4{2, 3, 6, 7});
+}
+
 /// max(0, v) lane by lane, as std::max(0.0f, v) (a NaN lane gives 0).
 inline F4 clampNonNegative(F4 v) {
   const F4 zero{};
