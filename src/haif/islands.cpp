@@ -6,21 +6,14 @@
 
 namespace haif {
 
-void IslandBuilder::build(const BodyStore& bodies, const ContactEdge* contacts, uint32_t contactCount,
-                          const std::vector<Joint>& joints, IslandSet& out) {
-  const uint32_t n = static_cast<uint32_t>(bodies.size());
-  const uint32_t nc = contactCount;
-  parent_.resize(n);
-  for (uint32_t i = 0; i < n; ++i) parent_[i] = i;
-  // Unite, and keep what the later passes need per contact.
-  contactBody_.resize(nc);
-  out.touchingContacts = out.contactPoints = 0;
-  for (uint32_t ci = 0; ci < nc; ++ci) {
+void IslandBuilder::uniteContacts(const BodyStore& bodies, const ContactEdge* contacts, uint32_t begin, uint32_t end) {
+  uint32_t touching = 0, points = 0;
+  for (uint32_t ci = begin; ci < end; ++ci) {
     const ContactEdge& c = contacts[ci];
     uint32_t body = kNoBody;
     if (c.count > 0) {
-      ++out.touchingContacts;
-      out.contactPoints += c.count;
+      ++touching;
+      points += c.count;
       const bool dynA = bodies.isAwakeDynamic(c.a), dynB = bodies.isAwakeDynamic(c.b);
       if (dynA && dynB) unite(c.a, c.b);
       // A contact belongs to the island of its (first) awake dynamic body.
@@ -28,20 +21,33 @@ void IslandBuilder::build(const BodyStore& bodies, const ContactEdge* contacts, 
     }
     contactBody_[ci] = body;
   }
-  auto activeEnd = [&](uint32_t i) { return i != kWorldBody && bodies.isAwakeDynamic(i); };
-  for (const Joint& j : joints)
-    if (!j.broken && activeEnd(j.def.bodyA) && activeEnd(j.def.bodyB)) unite(j.def.bodyA, j.def.bodyB);
+  __atomic_fetch_add(&touching_, touching, __ATOMIC_RELAXED);
+  __atomic_fetch_add(&points_, points, __ATOMIC_RELAXED);
+}
 
-  // Number the islands by their smallest body id (the root), in ascending order.
-  islandOfRoot_.assign(n, -1);
+void IslandBuilder::rootBodies(const BodyStore& bodies, uint32_t begin, uint32_t end) {
+  for (uint32_t i = begin; i < end; ++i) root_[i] = bodies.isAwakeDynamic(i) ? find(i) : kNoBody;
+}
+
+void IslandBuilder::gather(const BodyStore& bodies, const ContactEdge* contacts, uint32_t contactCount,
+                           const std::vector<Joint>& joints, IslandSet& out) {
+  const uint32_t n = static_cast<uint32_t>(bodies.size());
+  const uint32_t nc = contactCount;
+  out.touchingContacts = touching_;
+  out.contactPoints = points_;
+  auto activeEnd = [&](uint32_t i) { return i != kWorldBody && bodies.isAwakeDynamic(i); };
+
+  // Number the islands by their smallest body id (the root), in ascending order: a root comes
+  // before every other body of its island.
+  islandOfRoot_.resize(n);
   islandOfBody_.resize(n);
   unsorted_.clear();
   for (uint32_t i = 0; i < n; ++i) {
     islandOfBody_[i] = -1;
-    if (!bodies.isAwakeDynamic(i)) continue;
-    const uint32_t r = find(i);
-    if (islandOfRoot_[r] < 0) {
-      islandOfRoot_[r] = static_cast<int32_t>(unsorted_.size());
+    const uint32_t r = root_[i];
+    if (r == kNoBody) continue;
+    if (r == i) {
+      islandOfRoot_[i] = static_cast<int32_t>(unsorted_.size());
       unsorted_.emplace_back();
     }
     islandOfBody_[i] = islandOfRoot_[r];

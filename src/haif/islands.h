@@ -7,6 +7,7 @@
 #include "dynamics/joint.h"
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace haif {
@@ -43,38 +44,86 @@ struct IslandSet {
 };
 
 /// Union-find island builder; keeps its scratch buffers between steps (no allocation once warm).
+/// The unions run concurrently (lock-free, each link from a larger root to a smaller one), and every
+/// component ends rooted at its smallest body whatever order they ran in: the islands, their
+/// numbering and their order are the same for every thread count.
 class IslandBuilder {
  public:
   /// A contact joins its bodies when it has points and both bodies are awake dynamic ones. Joints
   /// are edges like contacts: an unbroken joint between two awake dynamic bodies joins them; a joint
   /// to the world, a static or a kinematic body belongs to the island of its dynamic body.
+  /// `parallelFor(n, grain, f)` runs f(begin, end) over [0, n) in ranges, possibly concurrently.
+  template <class ParallelFor>
   void build(const BodyStore& bodies, const ContactEdge* contacts, uint32_t contactCount,
-             const std::vector<Joint>& joints, IslandSet& out);
+             const std::vector<Joint>& joints, IslandSet& out, ParallelFor&& parallelFor);
+  /// The same on the calling thread alone.
+  void build(const BodyStore& bodies, const ContactEdge* contacts, uint32_t contactCount,
+             const std::vector<Joint>& joints, IslandSet& out) {
+    build(bodies, contacts, contactCount, joints, out, [](uint32_t n, uint32_t, auto&& f) {
+      if (n > 0) f(0u, n);
+    });
+  }
 
  private:
+  static constexpr uint32_t kNoBody = ~0u;
+  static constexpr uint32_t kBodyChunk = 4096, kContactChunk = 4096;
+
+  // parent_ is shared by the concurrent unions: read and swung with atomic operations only.
+  uint32_t parentOf(uint32_t x) const { return __atomic_load_n(&parent_[x], __ATOMIC_RELAXED); }
   uint32_t find(uint32_t x) {
-    while (parent_[x] != x) {
-      parent_[x] = parent_[parent_[x]];  // path halving
-      x = parent_[x];
+    for (;;) {
+      uint32_t p = parentOf(x);
+      if (p == x) return x;
+      const uint32_t grand = parentOf(p);
+      // Path halving. x is no root, so no union writes its parent, and any ancestor is a valid one:
+      // a plain (atomic) store, even racing another halving, keeps the forest intact.
+      if (grand != p) __atomic_store_n(&parent_[x], grand, __ATOMIC_RELAXED);
+      x = grand;
     }
-    return x;
   }
   void unite(uint32_t a, uint32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return;
-    if (a > b) std::swap(a, b);  // smaller id becomes the root: deterministic
-    parent_[b] = a;
+    for (;;) {
+      a = find(a);
+      b = find(b);
+      if (a == b) return;
+      if (a > b) std::swap(a, b);  // the larger root goes under the smaller: roots end as minima
+      uint32_t expected = b;
+      if (__atomic_compare_exchange_n(&parent_[b], &expected, a, false, __ATOMIC_RELAXED, __ATOMIC_RELAXED)) return;
+    }
   }
 
-  static constexpr uint32_t kNoBody = ~0u;
+  void uniteContacts(const BodyStore& bodies, const ContactEdge* contacts, uint32_t begin, uint32_t end);
+  void rootBodies(const BodyStore& bodies, uint32_t begin, uint32_t end);
+  void gather(const BodyStore& bodies, const ContactEdge* contacts, uint32_t contactCount,
+              const std::vector<Joint>& joints, IslandSet& out);
 
   std::vector<uint32_t> parent_;
+  std::vector<uint32_t> root_;                         // each awake dynamic body's root, after the unions
+  uint32_t touching_ = 0, points_ = 0;                 // summed by the concurrent ranges
   std::vector<int32_t> islandOfRoot_, islandOfBody_;  // island (in numbering order) of each root / body
   std::vector<uint32_t> contactBody_;                  // the awake dynamic body a contact belongs by, or kNoBody
   std::vector<uint32_t> cursorBody_, cursorContact_, cursorJoint_;
   std::vector<uint32_t> order_;
   std::vector<Island> unsorted_;
 };
+
+template <class ParallelFor>
+void IslandBuilder::build(const BodyStore& bodies, const ContactEdge* contacts, uint32_t contactCount,
+                          const std::vector<Joint>& joints, IslandSet& out, ParallelFor&& parallelFor) {
+  const uint32_t n = static_cast<uint32_t>(bodies.size());
+  parent_.resize(n);
+  root_.resize(n);
+  contactBody_.resize(contactCount);
+  touching_ = points_ = 0;
+  parallelFor(n, kBodyChunk, [&](uint32_t b, uint32_t e) {
+    for (uint32_t i = b; i < e; ++i) parent_[i] = i;
+  });
+  parallelFor(contactCount, kContactChunk, [&](uint32_t b, uint32_t e) { uniteContacts(bodies, contacts, b, e); });
+  auto activeEnd = [&](uint32_t i) { return i != kWorldBody && bodies.isAwakeDynamic(i); };
+  for (const Joint& j : joints)
+    if (!j.broken && activeEnd(j.def.bodyA) && activeEnd(j.def.bodyB)) unite(j.def.bodyA, j.def.bodyB);
+  parallelFor(n, kBodyChunk, [&](uint32_t b, uint32_t e) { rootBodies(bodies, b, e); });
+  gather(bodies, contacts, contactCount, joints, out);
+}
 
 }  // namespace haif

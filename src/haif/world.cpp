@@ -161,7 +161,8 @@ void World::step() {
     wakeJointedBodies();
     findPinnedBodies();
   }
-  islandBuilder_.build(bodies_, contactEdges_.data(), uint32_t(contactEdges_.size()), joints_, islands_);
+  islandBuilder_.build(bodies_, contactEdges_.data(), uint32_t(contactEdges_.size()), joints_, islands_,
+                       [&](uint32_t count, uint32_t grain, auto&& f) { parallelFor(count, grain, f); });
   if (settings_.topDownOrder) orderContactsTopDown();
   if (settings_.coldStartFromWeight && settings_.contact.warmStart && settings_.topDownOrder) estimateColdImpulses();
   splitGiantIslands();

@@ -1,5 +1,6 @@
 // Giant islands are cut into strips whose two phases can be swept in parallel (haif/island_split.h).
 #include "haif/island_split.h"
+#include "haif/tsan_pool.h"
 #include "haif/world.h"
 #include "support/physics_test_util.h"
 
@@ -126,6 +127,37 @@ TEST(IslandSplit, AWideBodyGoesToTheSerialTail) {
   splitter.split(w.bodies(), w.contactEdges().data(), Vec3::UnitY(), copy, 0, layout);
   ASSERT_GE(layout.strips, 2u);
   EXPECT_GT(layout.start[layout.strips + 1] - layout.start[layout.strips], 0u);
+}
+
+// The split's stages run chunk by chunk on a pool's threads, or in reverse order; the strips, their
+// order and the regrouped contacts are those of the split on one thread, every time.
+TEST(IslandSplit, ConcurrentSplitMatchesTheSplitOnOneThreadCount) {
+  World w;
+  buildPyramid(w, 70, 2);  // 2485 boxes, ~4800 contacts: several chunks of each kind
+  const IslandSet& set = w.islands();
+  ASSERT_EQ(set.islands.size(), 1u);
+  IslandSet serial = set;
+  IslandSplitter one;
+  StripLayout expected;
+  one.split(w.bodies(), w.contactEdges().data(), Vec3::UnitY(), serial, 0, expected);
+  ASSERT_GE(expected.strips, 16u);
+  TsanPool pool(4);
+  for (int round = 0; round < 5; ++round) {
+    IslandSet copy = set;
+    IslandSplitter many;
+    StripLayout layout;
+    // Round 0 runs the ranges one at a time, last first: any order is allowed, so none may matter.
+    many.split(w.bodies(), w.contactEdges().data(), Vec3::UnitY(), copy, 0, layout,
+               [&](uint32_t n, uint32_t grain, auto&& f) {
+                 if (round > 0) return pool.run(n, std::max(1u, grain / 8), f);
+                 for (uint32_t i = n; i-- > 0;) f(i, i + 1);
+               });
+    ASSERT_EQ(layout.strips, expected.strips);
+    for (uint32_t s = 0; s <= layout.strips + 1; ++s) EXPECT_EQ(layout.start[s], expected.start[s]) << "strip " << s;
+    for (uint32_t s = 0; s <= layout.strips; ++s) EXPECT_EQ(layout.rows[s], expected.rows[s]) << "strip " << s;
+    EXPECT_EQ(copy.contacts, serial.contacts) << "round " << round;
+    for (uint32_t b : set.bodies) EXPECT_EQ(many.stripOf(b), one.stripOf(b)) << "body " << b;
+  }
 }
 
 TEST(IslandSplit, SameStateForAnyThreadCount) {

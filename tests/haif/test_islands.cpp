@@ -1,4 +1,5 @@
 // Island formation: connected components of awake dynamic bodies; statics never join or merge islands.
+#include "haif/tsan_pool.h"
 #include "haif/world.h"
 
 #include "support/physics_test_util.h"
@@ -6,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <random>
 #include <set>
 
 namespace haif {
@@ -164,6 +166,89 @@ TEST(Islands, ContactsDestroyedDuringARunLeaveIslandsAndCountsRight) {
   EXPECT_EQ(w.islandOf(row[3]), w.islandOf(row[5]));
   EXPECT_NE(w.islandOf(row[0]), w.islandOf(row[3]));
   EXPECT_NE(w.islandOf(row[2]), w.islandOf(row[0]));
+}
+
+// The unions run concurrently on a pool's threads: the islands (their members, numbering, order and
+// contact lists) are those of the build on one thread, and they are the graph's components.
+TEST(IslandBuilder, ConcurrentUnionsGiveTheSameIslandsAtEveryThreadCount) {
+  std::mt19937 rng(7);
+  BodyStore bodies;
+  const uint32_t n = 30000;
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t r = rng() % 50;
+    bodies.add(r == 0 ? BodyKind::Static : r == 1 ? BodyKind::Kinematic : BodyKind::Dynamic, Transform{}, 1.0f,
+               Mat3::Identity());
+    if (r == 2) bodies.asleep[i] = 1;
+  }
+  // Mostly short edges (chains and clusters of every size), some long ones merging them, some
+  // without points (they join nothing).
+  std::vector<ContactEdge> edges(60000);
+  for (ContactEdge& e : edges) {
+    e.a = uint32_t(rng() % n);
+    e.b = rng() % 8 == 0 ? uint32_t(rng() % n) : std::min(n - 1, e.a + 1 + uint32_t(rng() % 3));
+    e.count = uint8_t(rng() % 10 == 0 ? 0 : 1 + rng() % 4);
+  }
+  std::vector<Joint> joints;
+  IslandBuilder one;
+  IslandSet expected;
+  one.build(bodies, edges.data(), uint32_t(edges.size()), joints, expected);
+
+  // The components by a search over the same edges.
+  std::vector<std::vector<uint32_t>> adjacent(n);
+  for (const ContactEdge& e : edges)
+    if (e.count > 0 && bodies.isAwakeDynamic(e.a) && bodies.isAwakeDynamic(e.b)) {
+      adjacent[e.a].push_back(e.b);
+      adjacent[e.b].push_back(e.a);
+    }
+  std::vector<int32_t> component(n, -1);
+  int32_t components = 0;
+  for (uint32_t i = 0; i < n; ++i) {
+    if (!bodies.isAwakeDynamic(i) || component[i] >= 0) continue;
+    std::vector<uint32_t> stack{i};
+    component[i] = components;
+    while (!stack.empty()) {
+      const uint32_t b = stack.back();
+      stack.pop_back();
+      for (uint32_t c : adjacent[b])
+        if (component[c] < 0) {
+          component[c] = components;
+          stack.push_back(c);
+        }
+    }
+    ++components;
+  }
+  ASSERT_EQ(expected.islands.size(), size_t(components));
+  std::set<int32_t> seen;
+  for (const Island& isl : expected.islands) {
+    const int32_t c = component[expected.bodies[isl.firstBody]];
+    EXPECT_TRUE(seen.insert(c).second) << "component " << c << " in two islands";
+    for (uint32_t j = 0; j < isl.bodyCount; ++j) EXPECT_EQ(component[expected.bodies[isl.firstBody + j]], c);
+  }
+
+  for (int threads : {2, 4, 8}) {
+    TsanPool pool(threads);
+    for (int round = 0; round < 3; ++round) {
+      IslandBuilder many;
+      IslandSet out;
+      // Round 0 runs the ranges one at a time, last first: any order is allowed, so none may matter.
+      many.build(bodies, edges.data(), uint32_t(edges.size()), joints, out,
+                 [&](uint32_t count, uint32_t grain, auto&& f) {
+                   if (round > 0) return pool.run(count, std::max(1u, grain / 16), f);
+                   for (uint32_t i = count; i-- > 0;) f(i, i + 1);
+                 });
+      ASSERT_EQ(out.islands.size(), expected.islands.size()) << threads << " threads";
+      for (size_t k = 0; k < out.islands.size(); ++k) {
+        const Island &x = out.islands[k], &y = expected.islands[k];
+        EXPECT_TRUE(x.firstBody == y.firstBody && x.bodyCount == y.bodyCount && x.firstContact == y.firstContact &&
+                    x.contactCount == y.contactCount && x.rows == y.rows)
+            << "island " << k << ", " << threads << " threads";
+      }
+      EXPECT_EQ(out.bodies, expected.bodies) << threads << " threads";
+      EXPECT_EQ(out.contacts, expected.contacts) << threads << " threads";
+      EXPECT_EQ(out.touchingContacts, expected.touchingContacts);
+      EXPECT_EQ(out.contactPoints, expected.contactPoints);
+    }
+  }
 }
 
 }  // namespace
