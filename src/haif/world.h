@@ -186,6 +186,7 @@ class World {
   struct SolveOrderBuffers {
     std::vector<float> contactHeight;  // solve-order key per contact
     std::vector<uint64_t> keys;        // the top-down sort's keys (descendingKey), in island order
+    std::vector<uint64_t> scratch;     // the radix sort's second buffer, beside keys
     std::vector<float> carried;        // per body: weight impulse (N s) it carries this step, for cold contacts
     std::vector<uint16_t> supports;    // per body: contacts holding it up
   } order_;

@@ -6,7 +6,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <atomic>
@@ -16,12 +15,6 @@
 #include <stdexcept>
 
 namespace haif {
-
-#ifdef HAIF_TSAN
-constexpr bool kTsan = true;
-#else
-constexpr bool kTsan = false;
-#endif
 
 namespace world_detail {
 

@@ -6,13 +6,6 @@
 
 namespace haif {
 
-namespace {
-
-// Islands with at least this many contacts have their top-down order sorted in parallel.
-constexpr uint32_t kParallelSortContacts = 8192;
-
-}  // namespace
-
 // Gauss-Seidel order matters for stacking: solving the highest contacts first carries the weight
 // of a stack down to the ground within one sweep (bottom-up needs one sweep per layer). Against
 // gravity, a 100-layer pyramid at 10 iterations dropped 1.6 m on average bottom-up, 0.08 m top-down.
@@ -36,18 +29,15 @@ void World::orderContactsTopDown() {
       order_.keys[j] = descendingKey(h, ids[j]);  // top down; ties by index: deterministic
     }
   });
-  // Islands own disjoint ranges: sorted concurrently; a giant island is sorted in parallel itself.
+  // Islands own disjoint ranges: sorted concurrently. An island's contacts ascend by index
+  // (IslandSet), so its keys are made in index order and sort by a few radix passes.
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
+  order_.scratch.resize(order_.keys.size());
   parallelFor(m, kIslandGrain, [&](uint32_t begin, uint32_t end) {
     for (uint32_t k = begin; k < end; ++k) {
       const Island& isl = islands_.islands[k];
       uint64_t* first = order_.keys.data() + isl.firstContact;
-      // Keys are unique (they hold the index): any sort gives the same order. Under TSan the sort
-      // stays serial, as TBB's hand-offs are invisible to it (haif/tsan_pool.h).
-      if (arena_ && isl.contactCount >= kParallelSortContacts && !kTsan)
-        arena_->execute([&] { tbb::parallel_sort(first, first + isl.contactCount); });
-      else
-        std::sort(first, first + isl.contactCount);
+      sortKeysMadeInIndexOrder(first, order_.scratch.data() + isl.firstContact, isl.contactCount);
       uint32_t* out = islands_.contacts.data() + isl.firstContact;
       for (uint32_t j = 0; j < isl.contactCount; ++j) out[j] = keyIndex(first[j]);
     }

@@ -49,5 +49,25 @@ TEST(SortKey, SignedZerosTie) {
   EXPECT_LT(orderedBits(0.0f), orderedBits(1e-30f));
 }
 
+// Keys made in index order sort by their values alone, stably: the same order as sorting whole keys.
+TEST(SortKey, KeysMadeInIndexOrderSortAsWholeKeys) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> d(-50.0f, 50.0f);
+  for (uint32_t n : {0u, 1u, 5u, 63u, 64u, 65u, 300u, 5000u}) {
+    for (int kind = 0; kind < 4; ++kind) {
+      std::vector<uint64_t> keys(n), scratch(n);
+      for (uint32_t i = 0; i < n; ++i) {
+        // Spread values, many ties, values sharing their upper digits, and one value for all.
+        const float v = kind == 0 ? d(rng) : kind == 1 ? float(int(d(rng)) / 10) : kind == 2 ? 7.0f + 1e-4f * float(rng() % 97) : 3.0f;
+        keys[i] = i % 2 ? descendingKey(v, i) : ascendingKey(v, i);
+      }
+      std::vector<uint64_t> expected = keys;
+      std::sort(expected.begin(), expected.end());
+      sortKeysMadeInIndexOrder(keys.data(), scratch.data(), n);
+      ASSERT_EQ(keys, expected) << n << " keys, kind " << kind;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace haif
