@@ -27,19 +27,24 @@ bool refreshManifold(const ManifoldCache& cache, const Transform& xa, const Tran
   const Mat3 ra = xa.q.toRotationMatrix(), rb = xb.q.toRotationMatrix();
   const Vec3 n = ra * cache.normalA;
   if (n.dot(rb * cache.normalB) < limits.turnCos) return false;
-  ContactPoint next[kMaxManifoldPoints];
+  // Every point is checked before any is written: a refused manifold stays as it was (the caller
+  // carries its impulses over from it). The new fields are written in place, not through a copy of
+  // the points: a point put together field by field and copied whole stalled store forwarding.
+  Vec3 position[kMaxManifoldPoints];
+  float depth[kMaxManifoldPoints];
   const float slide2 = limits.slide * limits.slide;
   for (int i = 0; i < m.count; ++i) {
     const Vec3 a = ra * cache.onA[i] + xa.p, b = rb * cache.onB[i] + xb.p;
     const Vec3 gap = a - b;
-    const float depth = gap.dot(n);
-    if (depth < -limits.margin || (gap - depth * n).squaredNorm() > slide2) return false;
-    next[i] = m.points[i];
-    next[i].position = 0.5f * (a + b);
-    next[i].normal = n;
-    next[i].depth = depth;
+    depth[i] = gap.dot(n);
+    if (depth[i] < -limits.margin || (gap - depth[i] * n).squaredNorm() > slide2) return false;
+    position[i] = 0.5f * (a + b);
   }
-  for (int i = 0; i < m.count; ++i) m.points[i] = next[i];
+  for (int i = 0; i < m.count; ++i) {
+    m.points[i].position = position[i];
+    m.points[i].normal = n;
+    m.points[i].depth = depth[i];
+  }
   return true;
 }
 
