@@ -17,11 +17,12 @@ void BroadPhase::addBody(uint32_t body, const Aabb& tight, bool isStatic) {
   markMoved(body);
 }
 
-bool BroadPhase::update(uint32_t body, const Aabb& tight) {
+bool BroadPhase::update(uint32_t body, const Aabb& tight, const Vec3& lead) {
   const int32_t p = proxy_[body];
   if (movingTree_.fatAabb(p).contains(tight.expanded(keptMargin))) return false;
   if (!movedFlag_[body]) previousFat_[body] = movingTree_.fatAabb(p);
-  movingTree_.moveProxy(p, tight.expanded(fatMargin));
+  const Aabb fat = tight.expanded(fatMargin);
+  movingTree_.moveProxy(p, fat.merged({fat.lo + lead, fat.hi + lead}));
   markMoved(body);
   return true;
 }

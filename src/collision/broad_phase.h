@@ -22,8 +22,10 @@ class BroadPhase {
   float keptMargin = 0.05f;
 
   void addBody(uint32_t body, const Aabb& tight, bool isStatic);
-  /// Updates a moving body's box; returns true when the body left its fat box (re-inserted).
-  bool update(uint32_t body, const Aabb& tight);
+  /// Updates a moving body's box; returns true when the body left its fat box (re-inserted). A
+  /// re-inserted box also reaches `lead` (m) further along the body's path: a body in free flight
+  /// then leaves its fat box every few steps instead of every step.
+  bool update(uint32_t body, const Aabb& tight, const Vec3& lead = Vec3::Zero());
   const Aabb& fatAabb(uint32_t body) const {
     return (isStatic_[body] ? staticTree_ : movingTree_).fatAabb(proxy_[body]);
   }

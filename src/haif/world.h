@@ -94,6 +94,8 @@ class World {
   /// Per contact, its bodies and point count as of the last narrow phase (what island building reads).
   const std::vector<ContactEdge>& contactEdges() const { return contactEdges_; }
   const IslandSet& islands() const { return islands_; }
+  /// The broad phase's boxes (read-only: tests and tools look at what the step keeps).
+  const BroadPhase& broadPhase() const { return broadPhase_; }
   /// Island index (into islands().islands) a body was solved in during the last step; -1 if none.
   int32_t islandOf(uint32_t body) const { return body < islandOfBody_.size() ? islandOfBody_[body] : -1; }
   const StepStats& lastStats() const { return stats_; }

@@ -26,10 +26,22 @@ void World::updateBroadPhase() {
     for (uint32_t i = begin; i < end; ++i)
       if (bodies_.kind[i] != BodyKind::Static && !bodies_.asleep[i]) bounds_[i] = computeAabb(shapes_[i], bodies_.xf[i]);
   });
+  // A dynamic body that touched nothing last step (alone in its island) is in flight: its fat box
+  // reaches kFlightLeadSteps steps of its path ahead. A falling pile re-inserted and queried every
+  // body every step (most of a 10^4-body pour's step); a churning pile keeps tight boxes (leading
+  // every body's box 4 steps made the swept pit 7.6 % slower).
+  const uint32_t islandCount = uint32_t(islands_.islands.size());
+  auto inFlight = [&](uint32_t i) {
+    const int32_t k = islandOfBody_[i];
+    if (k < 0 || uint32_t(k) >= islandCount) return false;
+    const Island& isl = islands_.islands[k];
+    return isl.bodyCount == 1 && isl.contactCount == 0 && isl.jointCount == 0;
+  };
   for (uint32_t i = 0; i < n; ++i) {
     if (bodies_.kind[i] == BodyKind::Static || bodies_.asleep[i]) continue;
     const Vec3 d = dt * bodies_.v[i];
-    broadPhase_.update(i, bounds_[i].merged({bounds_[i].lo + d, bounds_[i].hi + d}));
+    broadPhase_.update(i, bounds_[i].merged({bounds_[i].lo + d, bounds_[i].hi + d}),
+                       inFlight(i) ? Vec3(float(kFlightLeadSteps) * d) : Vec3::Zero());
   }
   // New pairs: the moved bodies' queries run in parallel, a list per run of kPairQueryGrain of
   // them (a churning pile re-inserts most of its bodies every step, and the queries were a sixth

@@ -35,6 +35,8 @@ constexpr uint32_t kBodyGrain = 8192;
 constexpr uint32_t kPoseGrain = 512;
 /// Tight boxes: one per moving body, a hull's or compound's box costs hundreds of nanoseconds.
 constexpr uint32_t kBoundsGrain = 1024;
+/// Steps of its path a body in free flight has its broad-phase box reach ahead (updateBroadPhase).
+constexpr int kFlightLeadSteps = 4;
 /// Narrow-phase pairs cost 0.1 to 10 microseconds each, very unevenly: small tasks balance them.
 constexpr uint32_t kPairGrain = 64;
 /// Contacts prepared in one chunk (row building, a few hundred nanoseconds each).
@@ -52,6 +54,7 @@ using world_detail::Clock;
 using world_detail::msSince;
 using world_detail::kBatchRows;
 using world_detail::kBodyGrain;
+using world_detail::kFlightLeadSteps;
 using world_detail::kBoundsGrain;
 using world_detail::kContactChunk;
 using world_detail::kHeightGrain;
