@@ -18,8 +18,9 @@
 #pragma once
 
 #include "core/body_store.h"
-#include "dynamics/contact.h"
+#include "core/serial_for.h"
 #include "core/sort_key.h"
+#include "dynamics/contact.h"
 #include "haif/islands.h"
 
 #include <algorithm>
@@ -60,9 +61,7 @@ class IslandSplitter {
   /// The same on the calling thread alone.
   void split(const BodyStore& bodies, const ContactEdge* contacts, const Vec3& up, IslandSet& set, uint32_t k,
              StripLayout& out) {
-    split(bodies, contacts, up, set, k, out, [](uint32_t n, uint32_t, auto&& f) {
-      if (n > 0) f(0u, n);
-    });
+    split(bodies, contacts, up, set, k, out, serialFor);
   }
   /// The strip of a body of the island last split (a body of no split island: meaningless).
   uint32_t stripOf(uint32_t body) const { return stripOfBody_[body]; }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/body_store.h"
+#include "core/serial_for.h"
 #include "dynamics/joint.h"
 
 #include <cstdint>
@@ -59,9 +60,7 @@ class IslandBuilder {
   /// The same on the calling thread alone.
   void build(const BodyStore& bodies, const ContactEdge* contacts, uint32_t contactCount,
              const std::vector<Joint>& joints, IslandSet& out) {
-    build(bodies, contacts, contactCount, joints, out, [](uint32_t n, uint32_t, auto&& f) {
-      if (n > 0) f(0u, n);
-    });
+    build(bodies, contacts, contactCount, joints, out, serialFor);
   }
 
  private:

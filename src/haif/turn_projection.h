@@ -42,6 +42,7 @@
 #include "collision/shape.h"
 #include "core/aabb.h"
 #include "core/body_store.h"
+#include "core/serial_for.h"
 #include "dynamics/contact.h"
 #include "haif/islands.h"
 
@@ -90,9 +91,7 @@ class TurnProjection {
   uint32_t apply(const TurnProjectionInput& in, const TurnProjectionSettings& settings, ParallelFor&& parallelFor);
   /// The same on the calling thread.
   uint32_t apply(const TurnProjectionInput& in, const TurnProjectionSettings& settings) {
-    return apply(in, settings, [](uint32_t n, uint32_t, auto&& f) {
-      if (n > 0) f(0u, n);
-    });
+    return apply(in, settings, serialFor);
   }
   /// Pairs the last apply collided again (a pair counts each time).
   uint32_t collisions() const { return collisions_; }

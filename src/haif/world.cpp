@@ -121,8 +121,7 @@ uint32_t World::projectTurns() {
   in.startBounds = bounds_.data();
   in.dt = settings_.dt;
   in.contactMargin = settings_.contactMargin;
-  return turnProjection_.apply(in, settings_.turnProjection,
-                               [this](uint32_t count, uint32_t grain, auto&& f) { parallelFor(count, grain, f); });
+  return turnProjection_.apply(in, settings_.turnProjection, parallelRanges());
 }
 
 void World::step() {
@@ -162,7 +161,7 @@ void World::step() {
     findPinnedBodies();
   }
   islandBuilder_.build(bodies_, contactEdges_.data(), uint32_t(contactEdges_.size()), joints_, islands_,
-                       [&](uint32_t count, uint32_t grain, auto&& f) { parallelFor(count, grain, f); });
+                       parallelRanges());
   if (settings_.topDownOrder) orderContactsTopDown();
   if (settings_.coldStartFromWeight && settings_.contact.warmStart && settings_.topDownOrder) estimateColdImpulses();
   splitGiantIslands();

@@ -158,6 +158,10 @@ class World {
   void findPinnedBodies();
   void measureJointErrors();
   template <class F> void parallelFor(uint32_t n, uint32_t grain, F&& f);
+  /// parallelFor as a callable, for the stages that take one (TurnProjection, IslandBuilder, IslandSplitter).
+  auto parallelRanges() {
+    return [this](uint32_t n, uint32_t grain, auto&& f) { parallelFor(n, grain, f); };
+  }
 
   WorldSettings settings_;
   BodyStore bodies_;

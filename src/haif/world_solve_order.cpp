@@ -124,8 +124,7 @@ void World::splitGiantIslands() {
     const Island& isl = islands_.islands[k];
     if (isl.rows >= kSplitRows && isl.jointCount == 0) {
       if (layouts_.size() <= used) layouts_.emplace_back();
-      splitter_.split(bodies_, contactEdges_.data(), up, islands_, k, layouts_[used],
-                      [&](uint32_t count, uint32_t grain, auto&& f) { parallelFor(count, grain, f); });
+      splitter_.split(bodies_, contactEdges_.data(), up, islands_, k, layouts_[used], parallelRanges());
       layoutOf_[k] = int32_t(used);
       largest = std::max(largest, layouts_[used].criticalRows());
       ++used;
