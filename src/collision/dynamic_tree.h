@@ -1,6 +1,7 @@
 // Dynamic AABB tree: a binary bounding-volume hierarchy of "fat" boxes that supports insert,
-// remove and move in O(log n), kept height-balanced by rotations. Bodies that rest inside their fat
-// box cost nothing to update, which is what makes large resting scenes cheap.
+// remove and move in O(log n), kept height-balanced and tight (small surface area) by rotations.
+// Bodies that rest inside their fat box cost nothing to update, which is what makes large resting
+// scenes cheap.
 #pragma once
 
 #include "core/aabb.h"
@@ -43,11 +44,16 @@ class DynamicTree {
     }
   }
 
+  /// Sum of the internal nodes' half surface areas: what a query is expected to visit (the
+  /// surface-area heuristic); for tests of the tree's quality.
+  float internalArea() const;
+
   /// Checks the structural invariants (parents, heights, enclosing boxes); for tests.
   bool validate() const;
 
  private:
   static constexpr int kMaxStack = 256;  // a balanced tree of 2^64 leaves is < 128 deep
+  static constexpr int32_t kMaxImbalance = 1;  // children's heights differ by at most this
   struct Node {
     Aabb box;
     int32_t parent = kNull;  // doubles as the free-list link for free nodes
@@ -62,6 +68,7 @@ class DynamicTree {
   void insertLeaf(int32_t leaf);
   void removeLeaf(int32_t leaf);
   int32_t balance(int32_t a);
+  void rotateForArea(int32_t a);
   void refitUpwards(int32_t n);
   bool validateNode(int32_t n, int32_t parent) const;
 
