@@ -75,8 +75,7 @@ void DynamicTree::insertLeaf(int32_t leaf) {
   const int32_t oldParent = nodes_[sibling].parent;
   const int32_t newParent = allocateNode();
   nodes_[newParent].parent = oldParent;
-  nodes_[newParent].box = box.merged(nodes_[sibling].box);
-  nodes_[newParent].height = nodes_[sibling].height + 1;
+  nodes_[newParent].height = nodes_[sibling].height + 1;  // its box is left empty: refitUpwards sets it
   nodes_[newParent].child1 = sibling;
   nodes_[newParent].child2 = leaf;
   nodes_[sibling].parent = newParent;
@@ -111,15 +110,21 @@ void DynamicTree::removeLeaf(int32_t leaf) {
   freeNode(parent);
 }
 
+// Recomputes boxes and heights from `index` up, rotating where that balances or tightens the
+// tree. It stops at the first node that comes out as it was: everything above is then unchanged
+// (most moves in a pile change only the lowest few levels).
 void DynamicTree::refitUpwards(int32_t index) {
   while (index != kNull) {
-    index = balance(index);
-    rotateForArea(index);
-    Node& n = nodes_[index];
+    const int32_t top = balance(index);
+    const bool rotated = rotateForArea(top);
+    Node& n = nodes_[top];
+    const Aabb before = n.box;
+    const int32_t heightBefore = n.height;
     const Node& c1 = nodes_[n.child1];
     const Node& c2 = nodes_[n.child2];
     n.height = 1 + std::max(c1.height, c2.height);
     n.box = c1.box.merged(c2.box);
+    if (top == index && !rotated && n.height == heightBefore && n.box.lo == before.lo && n.box.hi == before.hi) return;
     index = n.parent;
   }
 }
@@ -167,18 +172,18 @@ int32_t DynamicTree::balance(int32_t a) {
 // Greedy insertion alone left the upper boxes of a churning pile overlapping more and more (a drum
 // of 2400 bodies: a query visited 500-1100 nodes to find 45 leaves; 240-310 with these swaps, 185
 // in a tree built afresh top down). The swaps keep children's heights within kMaxImbalance.
-void DynamicTree::rotateForArea(int32_t a) {
+bool DynamicTree::rotateForArea(int32_t a) {
   const Node& A = nodes_[a];
-  if (A.height < 2) return;
   const int32_t b = A.child1, c = A.child2;
   const Node& B = nodes_[b];
   const Node& C = nodes_[c];
+  if (B.child1 == kNull && C.child1 == kNull) return false;
   auto area = [&](int32_t x, int32_t y) { return nodes_[x].box.merged(nodes_[y].box).perimeter(); };
   auto h = [&](int32_t x) { return nodes_[x].height; };
   auto balanced = [](int32_t hx, int32_t hy) { return std::abs(hx - hy) <= kMaxImbalance; };
   // Each option: the two nodes to swap, and the area it saves.
   int32_t swapX = kNull, swapY = kNull;
-  float bestGain = 1e-6f * A.box.perimeter();  // ignore gains within rounding
+  float bestGain = 1e-6f * (B.box.perimeter() + C.box.perimeter());  // ignore gains within rounding
   auto consider = [&](int32_t x, int32_t y, float gain, bool keepsBalance) {
     if (keepsBalance && gain > bestGain) {
       bestGain = gain;
@@ -209,7 +214,7 @@ void DynamicTree::rotateForArea(int32_t a) {
     consider(d, f, both - area(f, e) - area(d, g), keeps(f, e, d, g));
     consider(d, g, both - area(g, e) - area(f, d), keeps(g, e, f, d));
   }
-  if (swapX == kNull) return;
+  if (swapX == kNull) return false;
   const int32_t px = nodes_[swapX].parent, py = nodes_[swapY].parent;
   auto replaceChild = [&](int32_t parent, int32_t from, int32_t to) {
     Node& p = nodes_[parent];
@@ -224,6 +229,7 @@ void DynamicTree::rotateForArea(int32_t a) {
     n.box = nodes_[n.child1].box.merged(nodes_[n.child2].box);
     n.height = 1 + std::max(nodes_[n.child1].height, nodes_[n.child2].height);
   }
+  return true;
 }
 
 float DynamicTree::internalArea() const {

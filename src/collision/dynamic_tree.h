@@ -68,7 +68,7 @@ class DynamicTree {
   void insertLeaf(int32_t leaf);
   void removeLeaf(int32_t leaf);
   int32_t balance(int32_t a);
-  void rotateForArea(int32_t a);
+  bool rotateForArea(int32_t a);
   void refitUpwards(int32_t n);
   bool validateNode(int32_t n, int32_t parent) const;
 
