@@ -24,7 +24,9 @@ struct Island {
 /// itself is ~0.5 KB, and passes over those were most of the island stage's time.
 struct ContactEdge {
   uint32_t a = 0, b = 0;  ///< body ids
-  float deepest = 0.0f;   ///< depth of the deepest point (m; 0 when none overlaps)
+  /// Depth of the deepest point (m; 0 when none overlaps). A pair without points: minus the
+  /// distance it is known to be apart (the margin the narrow phase collided it with).
+  float deepest = 0.0f;
   uint8_t count = 0;      ///< manifold points (0: not touching)
   bool unloaded = true;   ///< every point's normal impulse is zero (nothing to warm start from)
   /// Overlapping, between an awake dynamic body and a static or kinematic one (haif/pinch.h).

@@ -113,9 +113,10 @@ void TurnProjection::scanPairs(uint32_t begin, uint32_t end) {
     const float spin = spinReach_[e.a] + spinReach_[e.b];
     const float closing = dt * ((bodies.v[e.b] - bodies.v[e.a]).norm() + spin);
     // The bound at the step's end: the start depth and how far the pair may close (a pair without
-    // points began farther apart than the margin).
-    known_[c] = e.count == 0 ? closing - in_.contactMargin : e.deepest + closing;
-    if (e.count == 0 ? closing <= in_.contactMargin : e.deepest + closing <= target(c) + kCrushSlack) continue;
+    // points began farther apart than the margin the narrow phase collided it with: its deepest is
+    // minus that, ContactEdge).
+    known_[c] = e.deepest + closing;
+    if (e.count == 0 ? known_[c] <= 0.0f : known_[c] <= target(c) + kCrushSlack) continue;
     if (settings_.crushKeep <= 0.0f && !turned_[e.a] && !turned_[e.b]) continue;  // crushes left to the solver
     if (e.count == 0) {
       // Boxes from the start, each widened by how far its body may go: cheap, and most pairs stop here.

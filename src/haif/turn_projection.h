@@ -11,8 +11,9 @@
 // - a blow within the step: a pair farther apart at the start than it then closed has no point (a
 //   ball falling at 12 m/s was stopped by what it landed on and met by one at 13 m/s, 8 cm deep).
 // So after the step, the pairs of each body that turned more than an angle, and the pairs whose
-// points, read linearly with the final velocities (or, without points, whose final boxes overlap),
-// end deeper than they may keep, are collided again at the poses the step ended on, and a pair
+// points, read linearly with the final velocities (or, without points, whose final boxes overlap
+// and which may have closed more than the margin the narrow phase found them apart by), end deeper
+// than they may keep, are collided again at the poses the step ended on, and a pair
 // deeper than its target is moved apart by the excess, positions only (its velocities stay the
 // solver's). A pair keeps the depth it began the step with, within [keep, crushKeep]; depth it
 // began with beyond that goes by crushRecover a step (bodies spawned into each other come apart

@@ -88,10 +88,11 @@ void World::updateBroadPhase() {
 
 namespace {
 
-// What the stages after the narrow phase need of a contact, copied while it is in cache.
-inline void noteEdge(const Contact& c, ContactEdge& edge, bool againstImmovable) {
+// What the stages after the narrow phase need of a contact, copied while it is in cache. `apart`:
+// how far apart a pair without points is known to be (the margin it was collided with).
+inline void noteEdge(const Contact& c, ContactEdge& edge, bool againstImmovable, float apart) {
   edge.count = uint8_t(c.manifold.count);
-  edge.deepest = c.manifold.deepest();
+  edge.deepest = c.manifold.count > 0 ? c.manifold.deepest() : -apart;
   edge.overlapping = edge.deepest > 0.0f;
   edge.pressedByImmovable = againstImmovable && edge.overlapping;
   bool unloaded = true;
@@ -155,7 +156,7 @@ void World::narrowPhase() {
       edge.a = c.a;
       edge.b = c.b;
       if (!active(c.a) && !active(c.b)) {  // sleeping or static on both sides: keep the manifold
-        noteEdge(c, edge, false);
+        noteEdge(c, edge, false, settings_.contactMargin);
         continue;
       }
       // One side solved, the other static or kinematic: what pinches are made of (haif/pinch.h).
@@ -176,7 +177,7 @@ void World::narrowPhase() {
       if (reusable && rel < restingClosing && refreshManifold(c.cache, xa, xb, reuseLimits, c.manifold)) {
         collision_.reusedFlag[ci] = 1;
         updateAnchor(c, xa, xb);
-        noteEdge(c, edge, againstImmovable);
+        noteEdge(c, edge, againstImmovable, settings_.contactMargin);
         continue;  // same points and ids: the impulses stay where they are
       }
       const Manifold old = c.manifold;
@@ -219,7 +220,7 @@ void World::narrowPhase() {
       }
       if ((old.count > 0) != (c.manifold.count > 0)) collision_.wakeFlag[ci] = 1;
       updateAnchor(c, xa, xb);
-      noteEdge(c, edge, againstImmovable);
+      noteEdge(c, edge, againstImmovable, reach);
     }
   });
 
