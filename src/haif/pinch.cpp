@@ -12,6 +12,7 @@ uint32_t PinchDetector::mark(const BodyStore& bodies, const ContactEdge* edges, 
   if (noteOfBody_.size() < bodies.size()) noteOfBody_.resize(bodies.size(), -1);
   notes_.clear();
   candidates_.clear();
+  pinchedContacts_.clear();
   const uint32_t n = static_cast<uint32_t>(contacts.size());
   for (uint32_t ci = 0; ci < n; ++ci) {
     if (!edges[ci].pressedByImmovable) continue;
@@ -34,7 +35,7 @@ uint32_t PinchDetector::mark(const BodyStore& bodies, const ContactEdge* edges, 
       note.two = true;
     }
   }
-  for (const Candidate& k : candidates_) contacts[k.contact].pinched = notes_[k.note].pinched;
+  for (const Candidate& k : candidates_) setPinched(contacts, k.contact, notes_[k.note].pinched);
   uint32_t pinched = candidates_.empty() ? 0u : markCrushes(bodies, edges, contacts);
   for (const Note& note : notes_) {
     pinched += note.pinched ? 1u : 0u;
@@ -91,11 +92,11 @@ uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* 
     if (first < 0 || s.other == pressures_[first].source || s.into.dot(pressures_[first].into) >= kOpposed ||
         s.into.dot(pressures_[first].push) >= kOpposed)
       continue;
-    contacts[k.contact].pinched = true;
+    setPinched(contacts, k.contact, true);
     for (int32_t at = first; at >= 0 && !pressures_[at].crushed;) {
       Pressure& q = pressures_[at];
       q.crushed = true;
-      contacts[uint32_t(q.via)].pinched = true;
+      setPinched(contacts, uint32_t(q.via), true);
       if (noteOfBody_[q.body] < 0 || !notes_[noteOfBody_[q.body]].pinched) ++crushed;
       at = q.from == q.source ? -1 : pressureOfBody_[q.from];
     }

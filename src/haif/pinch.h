@@ -39,6 +39,8 @@ class PinchDetector {
   /// narrow phase clears it on every contact it visits). Contacts are read in index order: the
   /// result does not depend on threads. Returns the number of pinched bodies.
   uint32_t mark(const BodyStore& bodies, const ContactEdge* edges, std::vector<Contact>& contacts);
+  /// The contacts the last mark() set pinched (some may be listed twice): read without the contacts.
+  const std::vector<uint32_t>& pinchedContacts() const { return pinchedContacts_; }
 
   /// A kinematic body's pressure passes to a body ahead when their normal is within 60 degrees of it.
   static constexpr float kAhead = 0.5f;
@@ -63,6 +65,11 @@ class PinchDetector {
     Vec3 n1, n2;  // the first two unlike normals pointing into the body
     bool two = false, pinched = false;
   };
+  void setPinched(std::vector<Contact>& contacts, uint32_t c, bool pinched) {
+    contacts[c].pinched = pinched;
+    if (pinched) pinchedContacts_.push_back(c);
+  }
+  std::vector<uint32_t> pinchedContacts_;
   std::vector<int32_t> noteOfBody_;   // per body: its Note this step, or -1
   std::vector<Note> notes_;
   struct Candidate {

@@ -162,10 +162,11 @@ bool TurnProjection::collectCandidates() {
   // it: out of one is into the other. A kinematic body is as immovable as a static one here: the
   // body in it moves out (into the pile, whose pairs the next round takes).
   held_.assign(n, 0);
-  for (uint32_t c = 0; c < pairCount; ++c) {
-    const ContactEdge& k = in_.edges[c];  // a, b and the point count, packed: the contacts are large
-    if (k.count > 0 && (*in_.contacts)[c].pinched) held_[k.a] = held_[k.b] = 1;
-  }
+  if (in_.pinched)
+    for (const uint32_t c : *in_.pinched) {  // the list, not every contact: the contacts are large
+      const ContactEdge& k = in_.edges[c];
+      if (k.count > 0) held_[k.a] = held_[k.b] = 1;
+    }
   // Each body's pairs that a round may take (CSR), so a round gathers the pairs of the bodies that
   // moved without reading every pair, and a move brings its body's higher pairs into the same round.
   pairStart_.assign(n + 1, 0);

@@ -75,6 +75,7 @@ struct TurnProjectionInput {
   const std::vector<Contact>* contacts = nullptr;
   const ContactEdge* edges = nullptr;
   const uint8_t* jointed = nullptr;   ///< per body: it has a joint (it is not moved); null: none has
+  const std::vector<uint32_t>* pinched = nullptr;  ///< the contacts marked pinched (haif/pinch.h); null: none
   Vec3 up = Vec3::UnitY();
   const float* reach = nullptr;       ///< per body: bounding radius about its centre (m)
   const Aabb* startBounds = nullptr;  ///< per body: tight box at the step's start

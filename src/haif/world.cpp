@@ -116,6 +116,7 @@ uint32_t World::projectTurns() {
   in.contacts = &contacts_;
   in.edges = contactEdges_.data();
   in.jointed = bodies_.implicitGyro.data();  // set for every body given a joint (World::addJoint)
+  in.pinched = settings_.resolvePinches ? &pinch_.pinchedContacts() : nullptr;
   in.up = upDirection();
   in.reach = speedBound_.reaches();
   in.startBounds = bounds_.data();

@@ -63,6 +63,10 @@ struct Scene {
     in.startBounds = bounds.data();
     jointed.resize(bodies.size(), 0);
     in.jointed = jointed.data();
+    std::vector<uint32_t> pinched;  // as PinchDetector lists the contacts it marked
+    for (uint32_t i = 0; i < contacts.size(); ++i)
+      if (contacts[i].pinched) pinched.push_back(i);
+    in.pinched = &pinched;
     in.dt = kDt;
     in.contactMargin = kMargin;
     return projection.apply(in, s);
