@@ -61,14 +61,25 @@ uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* 
     if (surface.dot(s.into) > 0.0f) press(s.dyn, s.into, s.into, s.other, k.contact, s.other);
   }
   if (pressures_.empty()) return 0;
-  // Passed on, in contact order (the same on any thread count), to the bodies ahead.
+  // Passed on, in contact order (the same on any thread count), to the bodies ahead, along the
+  // contacts that can carry it: listed once, and a contact whose bodies are both pressed leaves the
+  // list (pressure is only added, so it carries nothing more). A turning drum's pressure took all
+  // eight passes over every contact of its pile.
+  links_.clear();
+  for (uint32_t ci = 0; ci < n; ++ci) {
+    const ContactEdge& e = edges[ci];
+    if (e.overlapping && bodies.isAwakeDynamic(e.a) && bodies.isAwakeDynamic(e.b)) links_.push_back(ci);
+  }
   for (int pass = 0; pass < kCrushPasses; ++pass) {
     bool grew = false;
-    for (uint32_t ci = 0; ci < n; ++ci) {
+    size_t kept = 0;
+    for (size_t j = 0; j < links_.size(); ++j) {
+      const uint32_t ci = links_[j];
       const ContactEdge& e = edges[ci];
-      if (!e.overlapping || !bodies.isAwakeDynamic(e.a) || !bodies.isAwakeDynamic(e.b)) continue;
       const int32_t pa = pressureOfBody_[e.a], pb = pressureOfBody_[e.b];
-      if ((pa < 0) == (pb < 0)) continue;
+      if (pa >= 0 && pb >= 0) continue;
+      links_[kept++] = ci;
+      if (pa < 0 && pb < 0) continue;
       const Vec3& ab = contacts[ci].manifold.points[0].normal;
       if (pa >= 0 && ab.dot(pressures_[pa].into) >= kAhead) {
         press(e.b, ab, pressures_[pa].push, pressures_[pa].source, ci, e.a);
@@ -78,6 +89,7 @@ uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* 
         grew = true;
       }
     }
+    links_.resize(kept);
     if (!grew) break;
   }
   // Ends: a pressed body that another immovable body pushes back, against the row's push too: each

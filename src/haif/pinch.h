@@ -70,6 +70,7 @@ class PinchDetector {
     if (pinched) pinchedContacts_.push_back(c);
   }
   std::vector<uint32_t> pinchedContacts_;
+  std::vector<uint32_t> links_;  // markCrushes: the contacts that may still pass pressure on
   std::vector<int32_t> noteOfBody_;   // per body: its Note this step, or -1
   std::vector<Note> notes_;
   struct Candidate {
