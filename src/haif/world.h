@@ -177,7 +177,7 @@ class World {
   // The broad and narrow phase's scratch (world_collision.cpp).
   struct CollisionBuffers {
     std::vector<std::vector<std::pair<uint32_t, uint32_t>>> newPairRuns;  // per run of moved bodies: pairs found
-    std::vector<uint8_t> wakeFlag;    // per contact: touching state changed this step
+    std::vector<uint8_t> pairFlags;   // per contact: kPairWakes | kPairApart, this step
     std::vector<uint8_t> reusedFlag;  // per contact: its manifold was reused this step
   } collision_;
   std::vector<ContactEdge> contactEdges_;  // per contact: its bodies and point count, from the narrow phase on

@@ -15,6 +15,10 @@ constexpr uint32_t kPairQueryGrain = 64;
 /// An old contact point this close (m) to a new one passes on its impulse when ids do not match.
 constexpr float kWarmStartMatchDistance = 0.02f;
 
+// What the narrow phase notes of a pair for the serial pass after it (collision_.pairFlags).
+constexpr uint8_t kPairWakes = 1;  // touching state changed: its bodies wake
+constexpr uint8_t kPairApart = 2;  // no points and the fat boxes separated: the contact goes
+
 }  // namespace
 
 void World::updateBroadPhase() {
@@ -138,7 +142,7 @@ float World::spinReach(uint32_t body) const {
 
 void World::narrowPhase() {
   const uint32_t n = static_cast<uint32_t>(contacts_.size());
-  collision_.wakeFlag.resize(n);
+  collision_.pairFlags.resize(n);
   collision_.reusedFlag.assign(n, 0);
   contactEdges_.resize(n);
   auto active = [&](uint32_t i) {
@@ -147,16 +151,21 @@ void World::narrowPhase() {
   ManifoldReuseLimits reuseLimits;
   reuseLimits.margin = settings_.contactMargin;
   const float restingClosing = reuseLimits.slide + settings_.gravity.norm() * settings_.dt * settings_.dt;
+  // The removal test reads two tree nodes a pair: made here, in parallel, not in the serial pass.
+  auto noteApart = [&](uint32_t ci, const ContactEdge& edge) {
+    if (edge.count == 0 && !broadPhase_.fatOverlap(edge.a, edge.b)) collision_.pairFlags[ci] |= kPairApart;
+  };
   parallelFor(n, kPairGrain, [&](uint32_t begin, uint32_t end) {
     for (uint32_t ci = begin; ci < end; ++ci) {
       Contact& c = contacts_[ci];
-      collision_.wakeFlag[ci] = 0;
+      collision_.pairFlags[ci] = 0;
       c.pinched = false;  // PinchDetector::mark sets it again
       ContactEdge& edge = contactEdges_[ci];
       edge.a = c.a;
       edge.b = c.b;
       if (!active(c.a) && !active(c.b)) {  // sleeping or static on both sides: keep the manifold
         noteEdge(c, edge, false, settings_.contactMargin);
+        noteApart(ci, edge);
         continue;
       }
       // One side solved, the other static or kinematic: what pinches are made of (haif/pinch.h).
@@ -178,6 +187,7 @@ void World::narrowPhase() {
         collision_.reusedFlag[ci] = 1;
         updateAnchor(c, xa, xb);
         noteEdge(c, edge, againstImmovable, settings_.contactMargin);
+        noteApart(ci, edge);
         continue;  // same points and ids: the impulses stay where they are
       }
       const Manifold old = c.manifold;
@@ -218,32 +228,39 @@ void World::narrowPhase() {
         c.frictionImpulse.setZero();
         c.twistImpulse = 0.0f;
       }
-      if ((old.count > 0) != (c.manifold.count > 0)) collision_.wakeFlag[ci] = 1;
+      if ((old.count > 0) != (c.manifold.count > 0)) collision_.pairFlags[ci] = kPairWakes;
       updateAnchor(c, xa, xb);
       noteEdge(c, edge, againstImmovable, reach);
+      noteApart(ci, edge);
     }
   });
 
   for (const uint8_t reused : collision_.reusedFlag) stats_.manifoldsReused += reused;
-  // Destroy contacts whose fat boxes separated; wake sleeping bodies whose contacts changed.
-  // It reads the flat edges, not the contacts (a pass over those took ~0.4 ms in many_pyramids).
+  // Destroy contacts whose fat boxes separated; wake sleeping bodies whose contacts changed. It reads
+  // the flags the narrow phase left, not the contacts (a pass over those took ~0.4 ms in
+  // many_pyramids) nor the tree (two nodes a pair: a third of this pass in a churning drum).
   for (uint32_t ci = 0; ci < contacts_.size();) {
+    const uint8_t flags = collision_.pairFlags[ci];
+    if (flags == 0) {
+      ++ci;
+      continue;
+    }
     const ContactEdge c = contactEdges_[ci];
-    if (collision_.wakeFlag[ci]) {
+    if (flags & kPairWakes) {
       wake(c.a);
       wake(c.b);
     }
-    if (c.count == 0 && !broadPhase_.fatOverlap(c.a, c.b)) {
+    if (flags & kPairApart) {
       pairs_.erase(PairMap::key(c.a, c.b));
       const uint32_t last = static_cast<uint32_t>(contacts_.size() - 1);
       if (ci != last) {
         contacts_[ci] = contacts_[last];
-        collision_.wakeFlag[ci] = collision_.wakeFlag[last];
+        collision_.pairFlags[ci] = collision_.pairFlags[last];
         contactEdges_[ci] = contactEdges_[last];
         pairs_.set(PairMap::key(contacts_[ci].a, contacts_[ci].b), ci);
       }
       contacts_.pop_back();
-      collision_.wakeFlag.pop_back();
+      collision_.pairFlags.pop_back();
       contactEdges_.pop_back();
       continue;
     }
