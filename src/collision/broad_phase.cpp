@@ -21,8 +21,7 @@ bool BroadPhase::update(uint32_t body, const Aabb& tight, const Vec3& lead) {
   const int32_t p = proxy_[body];
   if (movingTree_.fatAabb(p).contains(tight.expanded(keptMargin))) return false;
   if (!movedFlag_[body]) previousFat_[body] = movingTree_.fatAabb(p);
-  const Aabb fat = tight.expanded(fatMargin);
-  movingTree_.moveProxy(p, fat.merged({fat.lo + lead, fat.hi + lead}));
+  movingTree_.moveProxy(p, tight.expanded(fatMargin).swept(lead));
   markMoved(body);
   return true;
 }

@@ -19,6 +19,8 @@ struct Aabb {
   }
   Aabb merged(const Aabb& o) const { return {lo.cwiseMin(o.lo), hi.cwiseMax(o.hi)}; }
   Aabb expanded(float m) const { return {lo - Vec3::Constant(m), hi + Vec3::Constant(m)}; }
+  /// What the box covers moving by d: itself merged with itself moved.
+  Aabb swept(const Vec3& d) const { return merged({lo + d, hi + d}); }
   void include(const Vec3& p) { lo = lo.cwiseMin(p); hi = hi.cwiseMax(p); }
   Vec3 center() const { return 0.5f * (lo + hi); }
   Vec3 extent() const { return hi - lo; }

@@ -44,8 +44,7 @@ void World::updateBroadPhase() {
   for (uint32_t i = 0; i < n; ++i) {
     if (bodies_.kind[i] == BodyKind::Static || bodies_.asleep[i]) continue;
     const Vec3 d = dt * bodies_.v[i];
-    broadPhase_.update(i, bounds_[i].merged({bounds_[i].lo + d, bounds_[i].hi + d}),
-                       inFlight(i) ? Vec3(float(kFlightLeadSteps) * d) : Vec3::Zero());
+    broadPhase_.update(i, bounds_[i].swept(d), inFlight(i) ? Vec3(float(kFlightLeadSteps) * d) : Vec3::Zero());
   }
   // New pairs: the moved bodies' queries run in parallel, a list per run of kPairQueryGrain of
   // them (a churning pile re-inserts most of its bodies every step, and the queries were a sixth
@@ -151,8 +150,10 @@ void World::narrowPhase() {
   ManifoldReuseLimits reuseLimits;
   reuseLimits.margin = settings_.contactMargin;
   const float restingClosing = reuseLimits.slide + settings_.gravity.norm() * settings_.dt * settings_.dt;
-  // The removal test reads two tree nodes a pair: made here, in parallel, not in the serial pass.
-  auto noteApart = [&](uint32_t ci, const ContactEdge& edge) {
+  // Every pair ends here: its edge written, and the removal test made (two tree nodes a pair: here,
+  // in parallel, not in the serial pass).
+  auto finish = [&](uint32_t ci, const Contact& c, ContactEdge& edge, bool againstImmovable, float apart) {
+    noteEdge(c, edge, againstImmovable, apart);
     if (edge.count == 0 && !broadPhase_.fatOverlap(edge.a, edge.b)) collision_.pairFlags[ci] |= kPairApart;
   };
   parallelFor(n, kPairGrain, [&](uint32_t begin, uint32_t end) {
@@ -164,8 +165,7 @@ void World::narrowPhase() {
       edge.a = c.a;
       edge.b = c.b;
       if (!active(c.a) && !active(c.b)) {  // sleeping or static on both sides: keep the manifold
-        noteEdge(c, edge, false, settings_.contactMargin);
-        noteApart(ci, edge);
+        finish(ci, c, edge, false, settings_.contactMargin);
         continue;
       }
       // One side solved, the other static or kinematic: what pinches are made of (haif/pinch.h).
@@ -186,8 +186,7 @@ void World::narrowPhase() {
       if (reusable && rel < restingClosing && refreshManifold(c.cache, xa, xb, reuseLimits, c.manifold)) {
         collision_.reusedFlag[ci] = 1;
         updateAnchor(c, xa, xb);
-        noteEdge(c, edge, againstImmovable, settings_.contactMargin);
-        noteApart(ci, edge);
+        finish(ci, c, edge, againstImmovable, settings_.contactMargin);
         continue;  // same points and ids: the impulses stay where they are
       }
       const Manifold old = c.manifold;
@@ -230,8 +229,7 @@ void World::narrowPhase() {
       }
       if ((old.count > 0) != (c.manifold.count > 0)) collision_.pairFlags[ci] = kPairWakes;
       updateAnchor(c, xa, xb);
-      noteEdge(c, edge, againstImmovable, reach);
-      noteApart(ci, edge);
+      finish(ci, c, edge, againstImmovable, reach);
     }
   });
 

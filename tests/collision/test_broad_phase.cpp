@@ -12,9 +12,6 @@ namespace {
 
 Aabb cube(const Vec3& centre, float half) { return {centre - Vec3::Constant(half), centre + Vec3::Constant(half)}; }
 
-// A box's tight box swept by its step's displacement d, as the World passes it.
-Aabb swept(const Aabb& tight, const Vec3& d) { return tight.merged({tight.lo + d, tight.hi + d}); }
-
 // Steps a 0.3 m box falling at `speed` for `steps` steps (dt 1/60), its fat box leading
 // `leadSteps` steps of its path; returns how often it was re-inserted.
 int reinsertions(float speed, int leadSteps, int steps) {
@@ -25,7 +22,7 @@ int reinsertions(float speed, int leadSteps, int steps) {
   int count = 0;
   for (int s = 0; s < steps; ++s) {
     const Vec3 d(0.0f, -speed * dt, 0.0f);
-    if (bp.update(0, swept(cube(p, 0.3f), d), float(leadSteps) * d)) ++count;
+    if (bp.update(0, cube(p, 0.3f).swept(d), float(leadSteps) * d)) ++count;
     bp.clearMoved();
     p += d;
   }
@@ -59,7 +56,7 @@ TEST(BroadPhase, ALeadingBoxReportsEveryPairNoLaterThanTheSweptBoxesMeet) {
     std::set<std::pair<uint32_t, uint32_t>> pairs;
     for (int s = 0; s < 120; ++s) {
       const Vec3 d(0.0f, -(2.0f + 0.2f * float(s)) * dt, 0.0f);  // speeding up, as in free fall
-      const Aabb box = swept(cube(p, half), d);
+      const Aabb box = cube(p, half).swept(d);
       bp.update(0, box, float(leadSteps) * d);
       bp.findNewPairs([&](uint32_t a, uint32_t b) { pairs.insert({std::min(a, b), std::max(a, b)}); });
       for (uint32_t k = 0; k < others.size(); ++k)
