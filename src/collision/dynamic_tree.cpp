@@ -191,18 +191,20 @@ bool DynamicTree::rotateForArea(int32_t a) {
       swapY = y;
     }
   };
+  // Child x of a takes the place of `up` under its sibling, beside `stays`; `up` moves beside the
+  // sibling, whose area was siblingArea.
+  auto lift = [&](int32_t x, int32_t up, int32_t stays, float siblingArea) {
+    const bool keeps = balanced(h(x), h(stays)) && balanced(h(up), 1 + std::max(h(x), h(stays)));
+    consider(x, up, siblingArea - area(x, stays), keeps);
+  };
   const bool bInner = B.child1 != kNull, cInner = C.child1 != kNull;
-  if (cInner) {  // b takes the place of one of c's children, which moves up beside c
-    const int32_t f = C.child1, g = C.child2;
-    const float areaC = C.box.perimeter();
-    consider(b, f, areaC - area(b, g), balanced(h(b), h(g)) && balanced(h(f), 1 + std::max(h(b), h(g))));
-    consider(b, g, areaC - area(b, f), balanced(h(b), h(f)) && balanced(h(g), 1 + std::max(h(b), h(f))));
+  if (cInner) {
+    lift(b, C.child1, C.child2, C.box.perimeter());
+    lift(b, C.child2, C.child1, C.box.perimeter());
   }
   if (bInner) {
-    const int32_t d = B.child1, e = B.child2;
-    const float areaB = B.box.perimeter();
-    consider(c, d, areaB - area(c, e), balanced(h(c), h(e)) && balanced(h(d), 1 + std::max(h(c), h(e))));
-    consider(c, e, areaB - area(c, d), balanced(h(c), h(d)) && balanced(h(e), 1 + std::max(h(c), h(d))));
+    lift(c, B.child1, B.child2, B.box.perimeter());
+    lift(c, B.child2, B.child1, B.box.perimeter());
   }
   if (bInner && cInner) {  // a grandchild under b swaps with one under c
     const int32_t d = B.child1, e = B.child2, f = C.child1, g = C.child2;
