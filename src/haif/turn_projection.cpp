@@ -48,13 +48,13 @@ float TurnProjection::target(uint32_t c) const {
 
 bool TurnProjection::mayExceed(uint32_t c) const {
   const ContactEdge& e = in_.edges[c];
-  const float bound = known_[c] + (odometer_[e.a] + odometer_[e.b] - knownAt_[c]) + kBoundRounding;
+  const float bound = known_[c] + (relativeShift(e.a, e.b) - knownShift_[c]).norm() + kBoundRounding;
   return bound > target(c) + kLeastMove;
 }
 
-void TurnProjection::noteDepth(uint32_t c, float depth, float odometers) {
+void TurnProjection::noteDepth(uint32_t c, float depth, const Vec3& shift) {
   known_[c] = std::isfinite(depth) ? depth : 0.0f;  // no point at margin 0: apart
-  knownAt_[c] = odometers;
+  knownShift_[c] = shift;
 }
 
 bool TurnProjection::jointed(uint32_t i) const { return in_.jointed != nullptr && in_.jointed[i] != 0; }
@@ -187,8 +187,8 @@ bool TurnProjection::collectCandidates() {
   }
   active_.assign(n, 0);
   movedAt_.assign(n, 0);
-  odometer_.assign(n, 0.0f);
-  knownAt_.assign(pairCount, 0.0f);
+  shift_.assign(n, Vec3::Zero());
+  knownShift_.assign(pairCount, Vec3::Zero());
   collidedAt_.assign(pairCount, 0);
   queuedIn_.assign(pairCount, 0);
   clock_ = 1;
@@ -250,7 +250,7 @@ void TurnProjection::collideAhead(uint32_t begin, uint32_t end) {
   for (uint32_t j = begin; j < end; ++j) {
     const ContactEdge& k = in_.edges[pairs_[j].second];
     collideNow(in_, k.a, k.b, ahead_[j].depth, ahead_[j].normal);
-    ahead_[j].odometers = odometer_[k.a] + odometer_[k.b];
+    ahead_[j].shift = relativeShift(k.a, k.b);
   }
 }
 
@@ -280,14 +280,14 @@ bool TurnProjection::resolveRound() {
     }
     const uint32_t c = entry.second;
     const ContactEdge& k = in_.edges[c];
-    if (fromList) noteDepth(c, depth, ahead_[j - 1].odometers);
+    if (fromList) noteDepth(c, depth, ahead_[j - 1].shift);
     // A body an earlier pair of this round moved: the collision made ahead is stale, unless the
     // bound says that it still cannot be deep enough to move.
     if (!fromList || std::max(movedAt_[k.a], movedAt_[k.b]) > roundStart_) {
       if (!mayExceed(c)) continue;
       collideNow(in_, k.a, k.b, depth, normal);
       ++collisions_;
-      noteDepth(c, depth, odometer_[k.a] + odometer_[k.b]);
+      noteDepth(c, depth, relativeShift(k.a, k.b));
     }
     collidedAt_[c] = clock_;
     // The target is never under `keep`; a pair a later round finds where the last one left it stays.
@@ -306,8 +306,9 @@ bool TurnProjection::resolveRound() {
     for (const uint32_t body : {k.a, k.b}) {
       const float inv = body == k.a ? ia : ib;
       if (inv <= 0.0f) continue;
-      bodies.xf[body].p += (body == k.a ? -share * inv : share * inv) * normal;
-      odometer_[body] += share * inv;
+      const Vec3 move = (body == k.a ? -share * inv : share * inv) * normal;
+      bodies.xf[body].p += move;
+      shift_[body] += move;
       active_[body] = 1;
       movedAt_[body] = clock_;
       any = true;

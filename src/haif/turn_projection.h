@@ -120,12 +120,15 @@ class TurnProjection {
   bool resolveRound();
 
   float target(uint32_t contact) const;
-  /// No translation of a body moves any of its points farther than the translation: a pair whose
-  /// depth is known to be at most `known_` when its bodies had moved `knownAt_` between them is at
-  /// most that plus what they moved since. Pairs this bound keeps under their target are not
-  /// collided again (most pairs of a moved body in a churning pile).
+  /// The stage only translates bodies, and a pair's depth depends on where one body is relative to
+  /// the other: translated relative to each other by t, it deepens by at most |t|. A pair whose depth
+  /// was at most `known_` when one body was shifted `knownShift_` relative to the other is at most
+  /// that plus how far that relative shift has changed since. Pairs this bound keeps under their
+  /// target are not collided again (most pairs of a moved body in a churning pile, and the pairs of
+  /// bodies a jam pushed the same way).
   bool mayExceed(uint32_t contact) const;
-  void noteDepth(uint32_t contact, float depth, float odometers);
+  void noteDepth(uint32_t contact, float depth, const Vec3& shift);
+  Vec3 relativeShift(uint32_t a, uint32_t b) const { return shift_[a] - shift_[b]; }
   bool takeable(const ContactEdge& pair) const;  // a round may collide it again
   bool jointed(uint32_t body) const;
   bool movable(uint32_t body) const;
@@ -142,7 +145,7 @@ class TurnProjection {
   /// A round's collision of one pair, made at the round's start poses.
   struct Ahead {
     float depth = 0.0f;  // of the deepest point (-inf: no point)
-    float odometers = 0.0f;  // what the pair's bodies had moved between them at the round's start
+    Vec3 shift = Vec3::Zero();  // the pair's relative shift at the round's start
     Vec3 normal = Vec3::UnitY();
   };
 
@@ -156,9 +159,9 @@ class TurnProjection {
   std::vector<uint8_t> held_;       // per body: pinched between immovable ones: not moved
   std::vector<uint32_t> movedAt_;     // per body: the move clock when it last moved (0: not this step)
   std::vector<uint32_t> collidedAt_;  // per contact: the move clock when it was last collided again
-  std::vector<float> odometer_;       // per body: how far this stage has moved it this step (m)
+  std::vector<Vec3> shift_;           // per body: how far this stage has moved it this step (m)
   std::vector<float> known_;          // per contact: a bound on its depth (m) ...
-  std::vector<float> knownAt_;        // ... when its bodies' odometers summed to this
+  std::vector<Vec3> knownShift_;      // ... when its bodies' relative shift was this
   std::vector<uint32_t> pairStart_, pairOf_, fill_;  // per body: its takeable pairs (CSR)
   std::vector<uint32_t> queuedIn_;  // per contact: the round it was last queued in, + 1
   std::vector<std::pair<float, uint32_t>> pairs_;  // (height, contact) of this round, lowest first

@@ -213,6 +213,27 @@ TEST(TurnProjection, APairItsMovesCannotHaveCarriedPastItsTargetIsNotCollidedAga
   }
 }
 
+// Two boxes pressed 5 mm into each other, each 4 cm in the ground, are both lifted 1 cm (to the 3 cm
+// they may keep). Moved alike, they are where they were relative to each other: their pair cannot be
+// deeper than it was, and is not collided again (a jam pushed against `swept_pit`'s bar moves its
+// bodies the same way). Only the ground pairs are, ahead and after the lift: 4 collisions. A bound
+// on what each body moved, not on how they moved relative to each other, collides it too (5).
+TEST(TurnProjection, APairOfBodiesMovedAlikeIsNotCollidedAgain) {
+  Scene s;
+  const uint32_t ground = s.add(BodyKind::Static, Shape::box(Vec3(10, 0.5f, 10)), Vec3(0, -0.5f, 0), 0);
+  const uint32_t left = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(-0.4975f, 0.46f, 0), 1);
+  const uint32_t right = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0.4975f, 0.46f, 0), 1);
+  s.pairAt(ground, left, Vec3(-0.5f, -0.02f, 0), Vec3::UnitY(), 0.04f);
+  s.pairAt(ground, right, Vec3(0.5f, -0.02f, 0), Vec3::UnitY(), 0.04f);
+  s.pairAt(left, right, Vec3(0, 0.46f, 0), Vec3::UnitX(), 0.005f);
+  EXPECT_EQ(s.apply(), 2u);
+  EXPECT_NEAR(s.bodies.xf[left].p.y(), 0.47f, 1e-4f);
+  EXPECT_NEAR(s.bodies.xf[right].p.y(), 0.47f, 1e-4f);
+  EXPECT_EQ(s.bodies.xf[left].p.x(), -0.4975f);
+  EXPECT_EQ(s.bodies.xf[right].p.x(), 0.4975f);
+  EXPECT_EQ(s.projection.collisions(), 4u);
+}
+
 // A plate turning about its normal at 2 rad/s turns 0.033 rad a step, under the angle, but its rim
 // (1.42 m out) sweeps 4.7 cm a step, more than the narrow phase's 2 cm margin: features of its pairs
 // that were not among their points may have met within the step (a turning 1080 kg block of
