@@ -127,6 +127,7 @@ uint32_t World::projectTurns() {
 
 void World::step() {
   const auto t0 = Clock::now();
+  const FlushDenormals mode;  // core/flush_denormals.h: a resting pile's tiny speeds cost microcode
   // settings() is writable: a thread count set there takes effect here, before anything runs on the
   // workers, so the arena, the phase clocks and the controller's cost split never disagree.
   if (settings_.threads != workerThreads_) setThreads(settings_.threads);

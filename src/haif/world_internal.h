@@ -2,6 +2,7 @@
 // stage, and the member templates that run a stage's work over islands, strips and chunks.
 #pragma once
 
+#include "core/flush_denormals.h"
 #include "haif/world.h"
 
 #include <tbb/blocked_range.h>
@@ -69,12 +70,18 @@ void World::parallelFor(uint32_t n, uint32_t grain, F&& f) {
     if (n > 0) f(0u, n);
     return;
   }
+  // Each chunk runs in the step's floating-point mode, on whichever thread takes it.
 #ifdef HAIF_TSAN
-  pool_->run(n, grain, [&](uint32_t b, uint32_t e) { f(b, e); });
+  pool_->run(n, grain, [&](uint32_t b, uint32_t e) {
+    const FlushDenormals mode;
+    f(b, e);
+  });
 #else
   arena_->execute([&] {
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, grain),
-                      [&](const tbb::blocked_range<uint32_t>& r) { f(r.begin(), r.end()); });
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, grain), [&](const tbb::blocked_range<uint32_t>& r) {
+      const FlushDenormals mode;
+      f(r.begin(), r.end());
+    });
   });
 #endif
 }
