@@ -203,12 +203,14 @@ bool prepareChain(const Contact* contacts, const ContactConstraint* cs, uint32_t
   for (uint32_t j = 0; j < n; ++j) {
     if (cs[j].dynA) mark[cs[j].a] = kUnmarked;
     if (cs[j].dynB) mark[cs[j].b] = kUnmarked;
-    links[j].sideToNext = links[j].sideFromPrev = -1;
   }
   // The shape first, which most islands that are not chains fail within a few links: mark is 2j
-  // when a body was first met at link j, odd once it was met at a second, consecutive link.
+  // when a body was first met at link j, odd once it was met at a second, consecutive link. A link
+  // is cleared only when the walk reaches it: a link is ~700 bytes, and clearing every one cost a
+  // cache line per contact of every island that is not a chain (2.5% of `many_pyramids`' step).
   for (uint32_t j = 0; j < n; ++j) {
     const ContactConstraint& c = cs[j];
+    links[j].sideToNext = links[j].sideFromPrev = -1;
     for (int side = 0; side < 2; ++side) {
       const bool dyn = side == 0 ? c.dynA : c.dynB;
       if (!dyn) continue;
