@@ -18,19 +18,21 @@ namespace haif {
 class FlushDenormals {
  public:
 #if defined(__SSE__) || defined(_M_X64)
-  FlushDenormals() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | kFlushToZero | kDenormalsAreZero); }
+  /// MXCSR's flush-to-zero (results below the normal range are 0) and denormals-are-zero (so are
+  /// such inputs) bits.
+  static constexpr unsigned kModeBits = 0x8000 | 0x0040;
+  FlushDenormals() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | kModeBits); }
   ~FlushDenormals() { _mm_setcsr(saved_); }
-
- private:
-  static constexpr unsigned kFlushToZero = 0x8000;      // results below the normal range are 0
-  static constexpr unsigned kDenormalsAreZero = 0x0040;  // so are such inputs
-  unsigned saved_;
 #else
   FlushDenormals() = default;  // other targets: the default mode (correct, slower on subnormals)
 #endif
- public:
   FlushDenormals(const FlushDenormals&) = delete;
   FlushDenormals& operator=(const FlushDenormals&) = delete;
+
+#if defined(__SSE__) || defined(_M_X64)
+ private:
+  unsigned saved_;
+#endif
 };
 
 }  // namespace haif

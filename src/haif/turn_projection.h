@@ -159,7 +159,7 @@ class TurnProjection {
   std::vector<uint8_t> held_;       // per body: pinched between immovable ones: not moved
   std::vector<uint32_t> movedAt_;     // per body: the move clock when it last moved (0: not this step)
   std::vector<uint32_t> collidedAt_;  // per contact: the move clock when it was last collided again
-  std::vector<Vec3> shift_;           // per body: how far this stage has moved it this step (m)
+  std::vector<Vec3> shift_;           // per body: the translation this stage has given it this step (m)
   std::vector<float> known_;          // per contact: a bound on its depth (m) ...
   std::vector<Vec3> knownShift_;      // ... when its bodies' relative shift was this
   std::vector<uint32_t> pairStart_, pairOf_, fill_;  // per body: its takeable pairs (CSR)

@@ -44,7 +44,7 @@ TEST(FlushDenormals, ARestingPyramidKeepsNoSubnormalSpeeds) {
 // them still does: the step sets its mode for itself only.
 TEST(FlushDenormals, TheCallersModeIsPutBackAfterAStep) {
   const unsigned start = _mm_getcsr();
-  for (const unsigned mode : {start & ~0x8040u, start | 0x8040u}) {
+  for (const unsigned mode : {start & ~FlushDenormals::kModeBits, start | FlushDenormals::kModeBits}) {
     _mm_setcsr(mode);
     World w;
     w.setThreads(2);
