@@ -123,6 +123,67 @@ TEST(AxisEdges, PrunedEdgePairsOfRandomHullsFindWhatEveryPairFinds) {
 }
 
 
+TEST(AxisEdges, HullsJustTouchingGetWhatEveryEdgePairGives) {
+  // In a pile most hull pairs touch by a few millimetres, and only the edges near the other hull
+  // are tried (the reach of collidePolyPoly). Random hulls moved along a random direction to where
+  // they start to touch, then from 3 cm apart to 3 cm deep: the same contacts as every edge pair
+  // measured over all vertices when they overlap, and a contact whenever that finds one.
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  int compared = 0, overlapping = 0;
+  for (int shapes = 0; shapes < 6; ++shapes) {
+    std::shared_ptr<ConvexHull> hulls[2];
+    for (auto& h : hulls) {
+      std::vector<Vec3> pts;
+      const int n = 12 + int(rng() % 19);
+      for (int i = 0; i < n; ++i) pts.emplace_back(0.3f * u(rng), 0.2f * u(rng), 0.25f * u(rng));
+      h = buildConvexHull(pts, nullptr);
+      ASSERT_TRUE(h);
+    }
+    const PolyView A = hullView(*hulls[0]), B = hullView(*hulls[1]);
+    PolyView fullA = A, fullB = B;
+    fullA.numAxisEdges = fullA.numEdges;
+    fullB.numAxisEdges = fullB.numEdges;
+    fullA.edgeFaces = fullB.edgeFaces = nullptr;
+    for (int trial = 0; trial < 200; ++trial) {
+      Transform xa, xb;
+      xa.q = Quat(Eigen::AngleAxisf(3.0f * u(rng), Vec3(u(rng), u(rng), u(rng)).normalized()));
+      xb.q = Quat(Eigen::AngleAxisf(3.0f * u(rng), Vec3(u(rng), u(rng), u(rng)).normalized()));
+      const Vec3 dir = Vec3(u(rng), u(rng), u(rng)).normalized();
+      // Where along dir they start to touch: the full test at margin 0 says overlap or not.
+      float in = 0.0f, out = 2.0f;
+      for (int k = 0; k < 30; ++k) {
+        xb.p = 0.5f * (in + out) * dir;
+        Manifold m;
+        (collidePolyPoly(fullA, xa, fullB, xb, 0.0f, m) > 0 ? in : out) = 0.5f * (in + out);
+      }
+      xb.p = (out + 0.03f * u(rng)) * dir;
+      Manifold fast, full;
+      collidePolyPoly(A, xa, B, xb, 0.02f, fast);
+      collidePolyPoly(fullA, xa, fullB, xb, 0.02f, full);
+      if (full.count > 0 && full.deepest() > 0.0f) {
+        ASSERT_EQ(fast.count, full.count) << "hulls " << shapes << ", trial " << trial;
+        for (int k = 0; k < fast.count; ++k) {
+          EXPECT_NEAR(fast.points[k].depth, full.points[k].depth, 1e-4f) << "hulls " << shapes << ", trial " << trial;
+          EXPECT_LT((fast.points[k].normal - full.points[k].normal).norm(), 1e-3f) << "hulls " << shapes << ", trial " << trial;
+        }
+        ++overlapping;
+      } else if (full.count > 0) {
+        // Apart within the margin: as above, the pruned test may see a smaller gap, never a larger.
+        ASSERT_GT(fast.count, 0) << "hulls " << shapes << ", trial " << trial;
+        float deepestFast = -1e30f, deepestFull = -1e30f;
+        for (int k = 0; k < fast.count; ++k) deepestFast = std::max(deepestFast, fast.points[k].depth);
+        for (int k = 0; k < full.count; ++k) deepestFull = std::max(deepestFull, full.points[k].depth);
+        EXPECT_GE(deepestFast, deepestFull - 1e-5f) << "hulls " << shapes << ", trial " << trial;
+      }
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 1200);
+  EXPECT_GT(overlapping, 400) << "test set-up: many trials must overlap";
+}
+
+
 TEST(AxisEdges, AWiderMarginNeverLosesAnOverlapOfRandomHulls) {
   // A fast pair's wide margin makes a face preferred over an edge while they are apart (the face's
   // points take a landing on several points). Once the edges overlap, the face's clipped points can
