@@ -14,6 +14,15 @@ namespace {
 constexpr float kFaceTol = 1e-3f;
 // Depth (m) by which the closest point must pass a face's points to be added to them.
 constexpr float kDepthAgree = 1e-4f;
+// Faces whose planes the closest-point search reads the ends' heights over, kept on the stack.
+constexpr int kMaxHeights = 256;
+// How far (m) below the highest plane a face's plane may be and still hold an end's closest point:
+// insideFace's tolerance lets a foot just past a face's rim count as on it.
+constexpr float kHighestTol = 1e-3f;
+// An edge whose bound is within this distance (m) of the best is skipped too: a capsule lying over a
+// face's edge is as far from it as from the plane, and rounding put every other edge's bound a hair
+// under the best (a tie, which either edge wins equally).
+constexpr float kNearTie = 1e-6f;
 
 // True when p, on face f's plane, lies inside the face polygon (with a small tolerance).
 bool insideFace(const PolyView& P, int f, const Vec3& p) {
@@ -98,26 +107,41 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
   // How far the core stays beyond each face plane, the largest kept for the deep case below. The
   // whole core beyond one by more than r + margin: no point can be within the margin. Most pairs
   // the broad phase keeps are this far apart, and the closest-feature search costs a pass over
-  // every face and edge.
+  // every face and edge. The ends' heights over the face planes are kept (up to kMaxHeights faces)
+  // for the closest-point search below.
+  const bool heightsKept = P.numFaces <= kMaxHeights;
+  float above[2][kMaxHeights];
   float bestF = -1e30f;
   int face = 0;
   for (int f = 0; f < P.numFaces; ++f) {
     const ConvexHull::Face& F = P.faces[f];
-    const float s = std::min(F.normal.dot(c0), F.normal.dot(c1)) - F.offset - r;
+    const float d0 = F.normal.dot(c0), d1 = F.normal.dot(c1);
+    if (heightsKept) above[0][f] = d0 - F.offset, above[1][f] = d1 - F.offset;
+    const float s = std::min(d0, d1) - F.offset - r;
     if (s > margin) return 0;
     if (s > bestF) { bestF = s; face = f; }
   }
 
   if (!segmentPierces(P, c0, c1)) {
     // Closest points: endpoint-face, endpoint-edge and segment-edge cover every pair of features.
+    // Every point of the solid lies below every face plane, so an end is at least as far from it as
+    // it is above the highest plane, and its foot on a face is its closest point only on the planes
+    // it is that high above: the other faces are not tried. An edge lies in both its faces' planes,
+    // so the core is at least as far from it as the lower end is above either, and from the whole
+    // solid as far as above the plane it is highest over: an edge that cannot beat the best so far is
+    // skipped. Only a few of a hull's faces and edges are left to try (they were most of a sphere's
+    // or capsule's pair with a hull).
     float best = 1e30f;
     Vec3 pc = c0, pp = c0;
     uint32_t id = 0;
     for (int e = 0; e < (isSeg ? 2 : 1); ++e) {
       const Vec3& c = e ? c1 : c0;
+      float highest = -1e30f;  // without the heights kept, every face is tried
+      if (heightsKept)
+        for (int f = 0; f < P.numFaces; ++f) highest = std::max(highest, above[e][f]);
       for (int f = 0; f < P.numFaces; ++f) {
-        const float h = P.faces[f].normal.dot(c) - P.faces[f].offset;
-        if (h <= 0.0f || h * h >= best) continue;
+        const float h = heightsKept ? above[e][f] : P.faces[f].normal.dot(c) - P.faces[f].offset;
+        if (h <= 0.0f || h * h >= best || h < highest - kHighestTol) continue;
         const Vec3 q = c - h * P.faces[f].normal;
         if (!insideFace(P, f, q)) continue;
         best = h * h;
@@ -126,7 +150,17 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
         id = 0x20000u | uint32_t(f);
       }
     }
+    const bool pruneEdges = heightsKept && P.edgeFaces != nullptr;
+    // The core is no nearer the solid than its lower end is above any one face plane (bestF + r is
+    // the largest of those heights).
+    const float nearest = bestF + r;
+    float cut = std::sqrt(best) - kNearTie;  // edges whose bound reaches this cannot win
     for (int k = 0; k < P.numEdges; ++k) {
+      if (pruneEdges) {
+        const uint32_t f1 = P.edgeFaces[k].first, f2 = P.edgeFaces[k].second;
+        const float lower = std::max(std::max(std::min(above[0][f1], above[isSeg][f1]), std::min(above[0][f2], above[isSeg][f2])), nearest);
+        if (lower > 0.0f && lower >= cut) continue;
+      }
       const Vec3& a = P.verts[P.edges[k].first];
       const Vec3& b = P.verts[P.edges[k].second];
       Vec3 qc, qp;
@@ -142,6 +176,7 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
       const float d2 = (qc - qp).squaredNorm();
       if (d2 < best) {
         best = d2;
+        cut = std::sqrt(best) - kNearTie;
         pc = qc;
         pp = qp;
         id = 0x30000u | uint32_t(k);
