@@ -338,9 +338,9 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
 // (reaimForRelax): below it the two lever arms differ by less than the slop's fifth.
 constexpr float kReaimTravel = 1e-3f;
 
-bool wantsReaim(const BodyStore& bodies, const SolverParams& p, const ContactConstraint& cc) {
+bool wantsReaim(const Vec3* linear, const SolverParams& p, const ContactConstraint& cc) {
   if (cc.count == 0 || !cc.dynA || !cc.dynB) return false;  // one side immovable: its lever does not matter
-  const Vec3 moveA = p.dt * bodies.v[cc.a], moveB = p.dt * bodies.v[cc.b];
+  const Vec3 moveA = p.dt * linear[cc.a], moveB = p.dt * linear[cc.b];
   if ((moveB - moveA).squaredNorm() < kReaimTravel * kReaimTravel) return false;
   // A pair pushed apart (overlapping beyond the slop) moves by its push-out, not by a collision.
   for (int i = 0; i < cc.count; ++i)
@@ -348,9 +348,10 @@ bool wantsReaim(const BodyStore& bodies, const SolverParams& p, const ContactCon
   return true;
 }
 
-void reaimForRelax(const BodyStore& bodies, const Contact& contact, const SolverParams& p, ContactConstraint& cc) {
-  if (!wantsReaim(bodies, p, cc)) return;
-  const Vec3 moveA = p.dt * bodies.v[cc.a], moveB = p.dt * bodies.v[cc.b];
+bool reaimForRelax(const BodyStore& bodies, const Vec3* linear, const Contact& contact, const SolverParams& p,
+                   ContactConstraint& cc) {
+  if (!wantsReaim(linear, p, cc)) return false;
+  const Vec3 moveA = p.dt * linear[cc.a], moveB = p.dt * linear[cc.b];
   const Vec3 shift = 0.5f * (moveA + moveB);
   alignas(16) float normal[kMaxManifoldPoints], bias[kMaxManifoldPoints], bounce[kMaxManifoldPoints], friction[4],
       frictionBias[4];
@@ -365,6 +366,7 @@ void reaimForRelax(const BodyStore& bodies, const Contact& contact, const Solver
   std::copy_n(bounce, kMaxManifoldPoints, cc.restitutionBias);
   std::copy_n(friction, 4, cc.frictionImpulse);
   std::copy_n(frictionBias, 4, cc.frictionBias);
+  return true;
 }
 
 }  // namespace haif

@@ -78,7 +78,7 @@ inline RowImpulses frictionImpulses(const ContactConstraint& c, F4 a) {
 
 // Applies impulse changes of a constraint's normal rows (dn) and friction rows (df) to its bodies'
 // stored velocities (the warm start and the momentum step; a sweep holds the velocities itself).
-inline void applyToBodies(BodyStore& bodies, const ContactConstraint& c, F4 dn, F4 df) {
+inline void applyToBodies(VelocityView bodies, const ContactConstraint& c, F4 dn, F4 df) {
   const RowImpulses r = normalImpulses(c, dn), f = frictionImpulses(c, df);
   const F4 P = r.linear + f.linear;
   if (c.dynA) {
@@ -115,7 +115,7 @@ inline F4 rowBiases(const ContactConstraint& c, bool useBias) {
 }
 
 }  // namespace
-void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n) {
+void warmStart(VelocityView bodies, const ContactConstraint* cs, size_t n) {
   for (size_t k = 0; k < n; ++k) {
     const ContactConstraint& c = cs[k];
     if (c.count == 0) continue;
@@ -254,7 +254,7 @@ inline void restartDirectionOf(ContactConstraint& c) {
 }
 
 template <bool Restart, bool MeasureChange>
-SweepResult sweep(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias) {
+SweepResult sweep(VelocityView bodies, ContactConstraint* cs, size_t n, float omega, bool useBias) {
   float residual = 0.0f;
   double change = 0.0;
   for (size_t k = 0; k < n; ++k) {
@@ -283,7 +283,7 @@ SweepResult sweep(BodyStore& bodies, ContactConstraint* cs, size_t n, float omeg
 
 }  // namespace
 
-SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias,
+SweepResult solveIteration(VelocityView bodies, ContactConstraint* cs, size_t n, float omega, bool useBias,
                            bool restartDirection, bool measureChange) {
   // A restarted direction is always followed by a momentum step, which needs the change.
   if (restartDirection) return sweep<true, true>(bodies, cs, n, omega, useBias);
@@ -295,7 +295,7 @@ void startDirection(ContactConstraint* cs, size_t n) {
   for (size_t k = 0; k < n; ++k) restartDirectionOf(cs[k]);
 }
 
-void accelerate(BodyStore& bodies, ContactConstraint* cs, size_t n, float beta) {
+void accelerate(VelocityView bodies, ContactConstraint* cs, size_t n, float beta) {
   for (size_t k = 0; k < n; ++k) {
     ContactConstraint& c = cs[k];
     if (c.count == 0) continue;

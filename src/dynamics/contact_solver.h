@@ -13,6 +13,15 @@
 
 namespace haif {
 
+/// The velocities the sweeps read and write, by the rows' body indices: the bodies' own, or the copy
+/// of a split island's in strip order that the World gives them (docs/solver.md, "Giant islands").
+struct VelocityView {
+  Vec3* v;
+  Vec3* w;
+  explicit VelocityView(BodyStore& bodies) : v(bodies.v.data()), w(bodies.w.data()) {}
+  VelocityView(Vec3* linear, Vec3* angular) : v(linear), w(angular) {}
+};
+
 struct SolverParams {
   float dt = 1.0f / 60.0f;
   float omega = 1.0f;                 ///< SOR relaxation factor in [1, 2)
@@ -153,13 +162,21 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
 /// (both dynamic, closing or parting by more than 1 mm a step) the rows are built again about one
 /// point, the old one moved by the mean of the two bodies' moves; impulses and biases are kept.
 /// Pairs being pushed apart (a point beyond the slop) are left as they are.
-void reaimForRelax(const BodyStore& bodies, const Contact& contact, const SolverParams& p, ContactConstraint& cc);
+/// `linear` holds the linear velocities cc's body indices name (the bodies' own, or a split island's
+/// copy, which must then be current); the rows are built again from `bodies` by the contact's body
+/// ids. Returns true when it built them (cc's indices are then body ids).
+bool reaimForRelax(const BodyStore& bodies, const Vec3* linear, const Contact& contact, const SolverParams& p,
+                   ContactConstraint& cc);
 /// Whether reaimForRelax would build cc's rows again (it reads no impulse, so a packed copy's rows
 /// need not be unpacked to ask).
-bool wantsReaim(const BodyStore& bodies, const SolverParams& p, const ContactConstraint& cc);
+bool wantsReaim(const Vec3* linear, const SolverParams& p, const ContactConstraint& cc);
+
 
 /// Applies the accumulated (warm-start) impulses of the constraints to the body velocities.
-void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n);
+void warmStart(VelocityView bodies, const ContactConstraint* cs, size_t n);
+inline void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n) {
+  warmStart(VelocityView(bodies), cs, n);
+}
 
 /// Inverse of a symmetric positive definite 3x3 block by cofactors. False when a diagonal entry is
 /// not positive or the determinant is below minDetRatio times the diagonal's product: a direction
@@ -260,8 +277,12 @@ struct SweepResult {
 /// direction first takes its last sweep's change, as startDirection would, while the constraint is
 /// in cache for the sweep anyway (a pass of its own cost a serial 0.85 ms of large_pyramid's 2-thread step).
 /// `measureChange` false: SweepResult::change is left 0 (only the momentum step reads it).
-SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias,
+SweepResult solveIteration(VelocityView bodies, ContactConstraint* cs, size_t n, float omega, bool useBias,
                            bool restartDirection = false, bool measureChange = true);
+inline SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias,
+                                  bool restartDirection = false, bool measureChange = true) {
+  return solveIteration(VelocityView(bodies), cs, n, omega, useBias, restartDirection, measureChange);
+}
 
 /// Nonsmooth nonlinear conjugate gradient on top of the sweeps (after Silcowitz, Niebe and Erleben
 /// 2010). A sweep's impulse change is the negative gradient of the projected problem; momentum
@@ -270,7 +291,10 @@ SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, f
 /// begins a direction (first sweep, or a restart when β > 1); `accelerate` steps the impulses
 /// along β times the direction, projected onto their bounds, and updates the direction.
 void startDirection(ContactConstraint* cs, size_t n);
-void accelerate(BodyStore& bodies, ContactConstraint* cs, size_t n, float beta);
+void accelerate(VelocityView bodies, ContactConstraint* cs, size_t n, float beta);
+inline void accelerate(BodyStore& bodies, ContactConstraint* cs, size_t n, float beta) {
+  accelerate(VelocityView(bodies), cs, n, beta);
+}
 
 /// Writes the accumulated impulses back to the persistent contacts for the next step's warm start.
 void storeImpulses(const ContactConstraint* cs, size_t n, Contact* contacts);

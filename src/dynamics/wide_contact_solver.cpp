@@ -396,15 +396,15 @@ void reaimLanesForRelax(const BodyStore& bodies, const Contact* contacts, const 
     ContactConstraint* rows = cs + j;
     const size_t run = lb.run[j];
     if (lb.wideOf[j] < 0) {
-      for (size_t i = 0; i < run; ++i) reaimForRelax(bodies, contacts[rows[i].contact], p, rows[i]);
+      for (size_t i = 0; i < run; ++i) reaimForRelax(bodies, bodies.v.data(), contacts[rows[i].contact], p, rows[i]);
       continue;
     }
     bool any = false;
-    for (size_t i = 0; i < run && !any; ++i) any = wantsReaim(bodies, p, rows[i]);
+    for (size_t i = 0; i < run && !any; ++i) any = wantsReaim(bodies.v.data(), p, rows[i]);
     if (!any) continue;  // a resting batch: its packed rows stand
     WideContactBatch& batch = lb.wide[lb.wideOf[j]];
     unpackWideImpulses(batch, rows);
-    for (size_t i = 0; i < run; ++i) reaimForRelax(bodies, contacts[rows[i].contact], p, rows[i]);
+    for (size_t i = 0; i < run; ++i) reaimForRelax(bodies, bodies.v.data(), contacts[rows[i].contact], p, rows[i]);
     packWide(rows, run, batch);
   }
 }

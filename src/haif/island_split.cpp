@@ -67,9 +67,17 @@ void IslandSplitter::classifyContacts(const BodyStore& bodies, const ContactEdge
                                       uint32_t nc, uint32_t strips, uint32_t c) {
   uint32_t* count = count_.data() + size_t(c) * (kMaxStrips + 1);
   uint32_t* rows = rows_.data() + size_t(c) * (kMaxStrips + 1);
+  std::vector<uint32_t>& immovable = immovableOfChunk_[c];
+  immovable.clear();
+  auto noteImmovable = [&](uint32_t body) {  // a pile touches few: a short list, sorted later
+    if (immovable.size() >= 16 || std::find(immovable.begin(), immovable.end(), body) == immovable.end())
+      immovable.push_back(body);
+  };
   for (uint32_t j = c * kChunk; j < std::min(nc, (c + 1) * kChunk); ++j) {
     const ContactEdge& e = contacts[cs[j]];
     const bool ma = bodies.isAwakeDynamic(e.a), mb = bodies.isAwakeDynamic(e.b);
+    if (!ma) noteImmovable(e.a);
+    if (!mb) noteImmovable(e.b);
     const uint32_t sa = ma ? stripOfBody_[e.a] : stripOfBody_[e.b];
     const uint32_t sb = mb ? stripOfBody_[e.b] : sa;
     const uint32_t lo = std::min(sa, sb), hi = std::max(sa, sb);

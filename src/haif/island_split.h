@@ -65,6 +65,11 @@ class IslandSplitter {
   }
   /// The strip of a body of the island last split (a body of no split island: meaningless).
   uint32_t stripOf(uint32_t body) const { return stripOfBody_[body]; }
+  /// The island last split's bodies strip by strip: the r-th (r < its body count) lies in the strip
+  /// that holds rank r, so strips' bodies are runs of r.
+  uint32_t bodyAtRank(uint32_t r) const { return keyIndex(keys_[r]); }
+  /// The static, kinematic and sleeping bodies the island last split touches, ascending, each once.
+  const std::vector<uint32_t>& immovableBodies() const { return immovable_; }
 
  private:
   static constexpr uint32_t kChunk = 1024;  // bodies or contacts per chunk of concurrent work
@@ -89,6 +94,8 @@ class IslandSplitter {
   std::vector<uint32_t> stripOfBody_;             // per body id
   std::vector<uint32_t> stripOfContact_;          // per contact of the island, in island order
   std::vector<uint32_t> scratch_;
+  std::vector<std::vector<uint32_t>> immovableOfChunk_;  // per contact chunk, may repeat
+  std::vector<uint32_t> immovable_;
   std::vector<float> span_;                       // per body chunk: lo, hi along each world axis
   std::vector<uint32_t> count_, rows_, cursor_;   // per contact chunk and strip (kMaxStrips + 1 each)
 };
@@ -161,7 +168,13 @@ void IslandSplitter::split(const BodyStore& bodies, const ContactEdge* contacts,
   count_.assign(perChunk, 0);
   rows_.assign(perChunk, 0);
   cursor_.resize(perChunk);
+  if (immovableOfChunk_.size() < chunks(nc)) immovableOfChunk_.resize(chunks(nc));
   eachChunk(nc, [&](uint32_t c) { classifyContacts(bodies, contacts, cs, nc, strips, c); });
+  immovable_.clear();
+  for (uint32_t c = 0; c < chunks(nc); ++c)
+    immovable_.insert(immovable_.end(), immovableOfChunk_[c].begin(), immovableOfChunk_[c].end());
+  std::sort(immovable_.begin(), immovable_.end());
+  immovable_.erase(std::unique(immovable_.begin(), immovable_.end()), immovable_.end());
   placeContacts(out, chunks(nc));
   eachChunk(nc, [&](uint32_t c) { scatterContacts(cs, nc, c); });
   parallelFor(nc, kChunk * 4, [&](uint32_t b, uint32_t e) { std::copy(scratch_.begin() + b, scratch_.begin() + e, cs + b); });

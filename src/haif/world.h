@@ -212,6 +212,24 @@ class World {
   std::vector<int32_t> layoutOf_;     // per island: index into layouts_, or -1 when not split
   std::vector<StripLayout> layouts_;  // strips of this step's split islands (grows, then reused)
   std::vector<SweepResult> stripResult_;  // per layout, per strip: what its last sweep did
+  // A split island's velocities while its rows are swept, its bodies strip by strip: two strips
+  // swept at once then write no cache line in common (by body index they did wherever neighbouring
+  // indices lay in different strips). Per layout; the rows name slots from prepare to store
+  // (world_solve.cpp). Not with the wide solver, whose batches keep their own copies of indices.
+  struct StripVelocities {
+    std::vector<Vec3> v, w;
+    std::vector<uint32_t> bodyOf;     // per slot: its body (the island's dynamic bodies first)
+    std::vector<uint32_t> immovable;  // the immovable bodies its rows name, ascending, from slot immovableSlot on
+    uint32_t dynamic = 0, immovableSlot = 0;
+  };
+  std::vector<StripVelocities> stripVelocities_;  // per layout
+  std::vector<uint32_t> slotOf_;                  // per body of a split island: its slot there
+  bool slotted(uint32_t island) const { return layoutOf_[island] >= 0 && !settings_.wideSolve; }
+  VelocityView velocitiesOf(uint32_t island);
+  void toSlots(uint32_t island, ContactConstraint& c) const;  // c's body ids to its island's slots
+  void copyVelocitiesIn(uint32_t island);   // bodies' velocities into the island's slots
+  void copyVelocitiesOut(uint32_t island);  // and back
+  void assignSlots(uint32_t layout, uint32_t bodies);  // for the island the splitter just split
   LaneBatcher laneBatcher_;
   std::vector<uint8_t> laneRun_;  // per contact slot: length of the lane batch starting there, else 0
   std::vector<int32_t> wideOf_;   // per contact slot starting a batch: its wide_ index, or -1 (scalar)

@@ -2,6 +2,9 @@
 // stops), spare iterations shared, the relax sweeps after integration and the impulses stored.
 #include "haif/world_internal.h"
 
+#include <algorithm>
+#include <cassert>
+
 namespace haif {
 
 namespace {
@@ -55,8 +58,9 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias, bool restartDirection, 
       return solveIterationLanes(bodies_, cs + b, e - b, lb.from(b), omega, useBias);
     });
   } else {
+    const VelocityView velocities = velocitiesOf(k);
     r = forEachStrip(k, [&](uint32_t b, uint32_t e) {
-      return solveIteration(bodies_, cs + b, e - b, omega, useBias, restartDirection, measureChange);
+      return solveIteration(velocities, cs + b, e - b, omega, useBias, restartDirection, measureChange);
     });
   }
   if (isl.jointCount > 0) {
@@ -65,6 +69,41 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias, bool restartDirection, 
                                                           isl.jointCount, tree, omega, useBias));
   }
   return r;
+}
+
+VelocityView World::velocitiesOf(uint32_t k) {
+  if (!slotted(k)) return VelocityView(bodies_);
+  StripVelocities& sv = stripVelocities_[layoutOf_[k]];
+  return VelocityView(sv.v.data(), sv.w.data());
+}
+
+void World::toSlots(uint32_t k, ContactConstraint& c) const {
+  const StripVelocities& sv = stripVelocities_[layoutOf_[k]];
+  auto slot = [&](uint32_t body, bool dynamic) {
+    if (dynamic) return slotOf_[body];
+    const auto at = std::lower_bound(sv.immovable.begin(), sv.immovable.end(), body);
+    assert(at != sv.immovable.end() && *at == body);  // the splitter noted every one
+    return sv.immovableSlot + uint32_t(at - sv.immovable.begin());
+  };
+  c.a = slot(c.a, c.dynA);
+  c.b = slot(c.b, c.dynB);
+}
+
+void World::copyVelocitiesIn(uint32_t k) {
+  StripVelocities& sv = stripVelocities_[layoutOf_[k]];
+  const uint32_t slots = uint32_t(sv.bodyOf.size());
+  for (uint32_t s = 0; s < slots; ++s) {
+    sv.v[s] = bodies_.v[sv.bodyOf[s]];
+    sv.w[s] = bodies_.w[sv.bodyOf[s]];
+  }
+}
+
+void World::copyVelocitiesOut(uint32_t k) {
+  const StripVelocities& sv = stripVelocities_[layoutOf_[k]];
+  for (uint32_t s = 0; s < sv.dynamic; ++s) {
+    bodies_.v[sv.bodyOf[s]] = sv.v[s];
+    bodies_.w[sv.bodyOf[s]] = sv.w[s];
+  }
 }
 
 LaneBatches World::lanesOf(uint32_t k) {
@@ -82,19 +121,23 @@ void World::solveIslands(int iterations) {
     const Island& isl = islands_.islands[k];
     ContactConstraint* cs = constraints_.data() + isl.firstContact;
     const uint32_t* ids = islands_.contacts.data() + isl.firstContact;
+    const bool slots = slotted(k);
     forEachContactChunk(k, kPrepareChunk, [&](uint32_t begin, uint32_t end) {
       for (uint32_t j = begin; j < end; ++j) {
         // Contacts are visited in solve order, scattered through memory: the one a few ahead is
         // fetched while this one is prepared (the waits were a fifth of prepare in many_pyramids).
         if (j + kPrefetchAhead < end) prefetchContact(contacts_[ids[j + kPrefetchAhead]]);
         prepareContact(bodies_, contacts_[ids[j]], ids[j], sp, cs[j]);
+        if (slots) toSlots(k, cs[j]);
       }
     });
+    if (slots) copyVelocitiesIn(k);
     isChain_[k] = settings_.chainSolve && layoutOf_[k] < 0 && isl.jointCount == 0 &&
                   prepareChain(contacts_.data(), cs, isl.contactCount, chainMark_.data(),
                                chainLinks_.data() + isl.firstContact);
+    const VelocityView velocities = velocitiesOf(k);
     if (sp.warmStart) forEachStrip(k, [&](uint32_t b, uint32_t e) {
-      warmStart(bodies_, cs + b, e - b);
+      warmStart(velocities, cs + b, e - b);
       return SweepResult{};
     });
     if (isWide(k)) forEachLaneRange(k, packLanes);
@@ -114,6 +157,7 @@ void World::solveIslands(int iterations) {
                     supportLayers(k) >= settings_.momentumLayers;
     const bool wide = isWide(k);
     const LaneBatches lb = wide ? lanesOf(k) : LaneBatches{};
+    const VelocityView velocities = velocitiesOf(k);
     double lastChange = 0.0;
     int it = 0;
     float residual = 0.0f;
@@ -141,7 +185,7 @@ void World::solveIslands(int iterations) {
         const float beta = float(change / lastChange);
         forEachStrip(k, [&](uint32_t b, uint32_t e) {
           if (wide) accelerateLanes(bodies_, cs + b, e - b, lb.from(b), beta);
-          else accelerate(bodies_, cs + b, e - b, beta);
+          else accelerate(velocities, cs + b, e - b, beta);
           return SweepResult{};
         });
       }
@@ -152,6 +196,10 @@ void World::solveIslands(int iterations) {
   };
   forEachIslandTimed(prepareIsland, sweepIslandMain);
   if (tol > 0.0f && iterations > 0) shareSpareIterations(iterations);
+  // Integration reads the bodies' own velocities; the rows keep naming slots until they are stored.
+  const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
+  for (uint32_t k = 0; k < m; ++k)
+    if (slotted(k)) copyVelocitiesOut(k);
 }
 
 // Islands that converged early leave part of the step's work unspent: Σ (I − run) × rows. That
@@ -205,6 +253,8 @@ bool World::onlyPinned(uint32_t k) const {
 void World::relaxIslands(int relaxIterations) {
   const SolverParams sp = solverParams();
   auto relax = [&](uint32_t k) {
+    const bool slots = slotted(k);
+    if (slots) copyVelocitiesIn(k);  // as integration, damping and the speed bound left them
     // A chain keeps the factors of its rows from the main sweeps, and a jointed island's joint rows
     // were built with the stiffened inertia that integration has since reset (stiffenJointedBodies;
     // re-aimed contact rows next to them gained energy in random mixed worlds): their rows stay as
@@ -218,8 +268,10 @@ void World::relaxIslands(int relaxIterations) {
           reaimLanesForRelax(bodies_, contacts_.data(), sp, rows, n, lanes);
         });
       } else {
+        const Vec3* linear = velocitiesOf(k).v;
         forEachContactChunk(k, kContactChunk, [&](uint32_t b, uint32_t e) {
-          for (uint32_t j = b; j < e; ++j) reaimForRelax(bodies_, contacts_[cs[j].contact], sp, cs[j]);
+          for (uint32_t j = b; j < e; ++j)
+            if (reaimForRelax(bodies_, linear, contacts_[cs[j].contact], sp, cs[j]) && slots) toSlots(k, cs[j]);
         });
       }
     }
@@ -230,6 +282,7 @@ void World::relaxIslands(int relaxIterations) {
     for (int it = 0; it < relaxIterations; ++it) sweepIsland(k, false);
   };
   auto store = [&](uint32_t k) {
+    if (slotted(k)) copyVelocitiesOut(k);
     const Island& isl = islands_.islands[k];
     ContactConstraint* cs = constraints_.data() + isl.firstContact;
     if (isWide(k)) forEachLaneRange(k, unpackLanes);

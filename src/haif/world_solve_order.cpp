@@ -126,6 +126,7 @@ void World::splitGiantIslands() {
       if (layouts_.size() <= used) layouts_.emplace_back();
       splitter_.split(bodies_, contactEdges_.data(), up, islands_, k, layouts_[used], parallelRanges());
       layoutOf_[k] = int32_t(used);
+      if (!settings_.wideSolve) assignSlots(used, isl.bodyCount);
       largest = std::max(largest, layouts_[used].criticalRows());
       ++used;
     } else {
@@ -134,6 +135,29 @@ void World::splitGiantIslands() {
   }
   stripResult_.resize(layouts_.size() * (kMaxStrips + 1));
   islands_.largestRows = largest;
+}
+
+// The island just split gets a slot per body in strip order (the splitter's ranks), then, from a
+// cache line of its own, one per immovable body its rows name (read, never written).
+void World::assignSlots(uint32_t layout, uint32_t bodies) {
+  if (stripVelocities_.size() <= layout) stripVelocities_.resize(layout + 1);
+  if (slotOf_.size() < bodyCount()) slotOf_.resize(bodyCount());
+  StripVelocities& sv = stripVelocities_[layout];
+  constexpr uint32_t kLine = 16;  // slots: 16 Vec3 are 3 cache lines
+  sv.dynamic = bodies;
+  sv.immovableSlot = (bodies + kLine - 1) / kLine * kLine;
+  sv.immovable = splitter_.immovableBodies();
+  const uint32_t slots = sv.immovableSlot + uint32_t(sv.immovable.size());
+  sv.bodyOf.resize(slots);
+  sv.v.resize(slots);
+  sv.w.resize(slots);
+  for (uint32_t r = 0; r < bodies; ++r) {
+    const uint32_t body = splitter_.bodyAtRank(r);
+    sv.bodyOf[r] = body;
+    slotOf_[body] = r;
+  }
+  for (uint32_t r = bodies; r < sv.immovableSlot; ++r) sv.bodyOf[r] = sv.bodyOf[0];  // padding, never read
+  std::copy(sv.immovable.begin(), sv.immovable.end(), sv.bodyOf.begin() + sv.immovableSlot);
 }
 
 // Each range a sweep runs as one piece (an island, or a strip or tail of a split one) is grouped

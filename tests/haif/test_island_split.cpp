@@ -160,6 +160,32 @@ TEST(IslandSplit, ConcurrentSplitMatchesTheSplitOnOneThreadCount) {
   }
 }
 
+TEST(IslandSplit, BodiesComeStripByStripAndTheImmovableOnesOnce) {
+  // The solver copies a split island's velocities into this order (World::assignSlots), so that
+  // strips swept at once write apart in memory; the immovable bodies are read from slots of their own.
+  World w;
+  const uint32_t ground = addGround(w);
+  addPyramid2d(w, 40);
+  for (int s = 0; s < 2; ++s) w.step();
+  IslandSet copy = w.islands();
+  ASSERT_EQ(copy.islands.size(), 1u);
+  IslandSplitter splitter;
+  StripLayout layout;
+  splitter.split(w.bodies(), w.contactEdges().data(), Vec3::UnitY(), copy, 0, layout);
+  const Island& isl = copy.islands[0];
+  std::set<uint32_t> ranked;
+  uint32_t lastStrip = 0;
+  for (uint32_t r = 0; r < isl.bodyCount; ++r) {
+    const uint32_t body = splitter.bodyAtRank(r);
+    EXPECT_TRUE(ranked.insert(body).second) << "body " << body << " ranked twice";
+    EXPECT_GE(splitter.stripOf(body), lastStrip) << "rank " << r;
+    lastStrip = splitter.stripOf(body);
+  }
+  EXPECT_EQ(ranked, std::set<uint32_t>(copy.bodies.begin() + isl.firstBody, copy.bodies.begin() + isl.firstBody + isl.bodyCount));
+  EXPECT_EQ(lastStrip, layout.strips - 1);
+  EXPECT_EQ(splitter.immovableBodies(), std::vector<uint32_t>{ground});
+}
+
 TEST(IslandSplit, SameStateForAnyThreadCount) {
   test::expectSameStateForThreadCounts([](int threads) {
     WorldSettings ws;
