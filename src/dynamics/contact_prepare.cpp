@@ -257,12 +257,13 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   orthonormalBasis(n, t1, t2);
   const Vec3 rA = centre - pA, rB = centre - pB;
   // Static friction anchor (Contact::anchorA/B): the tangential drift of the two material points,
-  // pulled back like penetration (Baumgarte, capped) in the main sweeps. Velocity-level friction
-  // never undoes a slow slide, and friction-held structures crept apart over long runs.
+  // pulled back like penetration (at its own, gentler rate, capped) in the main sweeps.
+  // Velocity-level friction never undoes a slow slide, and friction-held structures crept apart
+  // over long runs.
   F4 anchorBias{};
   if (contact.anchored && p.frictionAnchors) {
     const Vec3 drift = bodies.xf[b].apply(contact.anchorB) - bodies.xf[a].apply(contact.anchorA);
-    const float k = p.beta * invDt, cap = p.maxPushVelocity;
+    const float k = p.anchorBeta * invDt, cap = p.maxPushVelocity;
     auto pull = [&](float d) {
       return std::clamp(k * std::copysign(std::max(std::fabs(d) - p.anchorSlop, 0.0f), d), -cap, cap);
     };
