@@ -59,8 +59,21 @@ void IslandBuilder::gather(const BodyStore& bodies, const ContactEdge* contacts,
   for (uint32_t ci = 0; ci < nc; ++ci) {
     const int32_t k = islandOfContact(ci);
     if (k < 0) continue;
-    ++unsorted_[k].contactCount;
-    unsorted_[k].rows += solverRowsFor(int(contacts[ci].count));
+    Island& isl = unsorted_[k];
+    ++isl.contactCount;
+    isl.rows += solverRowsFor(int(contacts[ci].count));
+    if (isl.carrier == Island::kNoCarrier) {
+      const ContactEdge& e = contacts[ci];
+      const uint32_t carrier = bodies.kind[e.a] == BodyKind::Kinematic   ? e.a
+                               : bodies.kind[e.b] == BodyKind::Kinematic ? e.b
+                                                                         : Island::kNoCarrier;
+      if (carrier != Island::kNoCarrier) {
+        isl.carrier = carrier;
+        isl.carrierV = bodies.v[carrier];
+        isl.carrierW = bodies.w[carrier];
+        isl.carrierAt = bodies.xf[carrier].p;
+      }
+    }
   }
   auto islandOfJoint = [&](const Joint& j) -> int32_t {
     if (j.broken) return -1;

@@ -18,6 +18,11 @@ struct Island {
   uint32_t firstContact = 0, contactCount = 0;  ///< range in IslandSet::contacts
   uint32_t rows = 0;                            ///< solver rows (solverRowsFor per manifold): the work of one iteration
   uint32_t firstJoint = 0, jointCount = 0;      ///< range in IslandSet::joints
+  /// The first kinematic body its contacts touch, or kNoCarrier: what a pile on a moving platform
+  /// rests on (haif/rest_damping.h). Its velocity and position when the island was built.
+  static constexpr uint32_t kNoCarrier = ~0u;
+  uint32_t carrier = kNoCarrier;
+  Vec3 carrierV = Vec3::Zero(), carrierW = Vec3::Zero(), carrierAt = Vec3::Zero();
 };
 
 /// What island building needs of a contact, kept by the narrow phase in a flat array: the Contact

@@ -10,6 +10,10 @@
 // it is: v' = v (s / s₀)² for a body speed s below s₀ (continuous at s₀; the mass-normalised kinetic
 // energy, rotation included, gives s). Bodies in free flight or held only by joints are left alone,
 // and nothing faster than s₀ is touched, so impacts, slides and swings keep their momentum.
+// Speeds are taken relative to the island's carrier, the first kinematic body it touches
+// (Island::carrier), as it moves there: a pile riding a platform rests on it. Measured against the
+// world such a pile was never slow, so never damped: a pyramid of 820 boxes on a platform that
+// started at 0.5 m/s still swayed by ±0.1 m/s after 900 steps.
 #pragma once
 
 #include "core/body_store.h"
