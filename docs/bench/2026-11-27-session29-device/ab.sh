@@ -1,11 +1,12 @@
 #!/bin/bash
-# s29b.sh ROUNDS BIN... : ROUNDS rotations over thread counts (THREADS, default 1 2 4 8 16), four
-# scenes and the binaries in turn (300 steps, fixed 10, error metric off); per run the median step
-# and its parts over steps 10-299 (stats.csv); then per set-up the median of the runs.
+# ab.sh ROUNDS BIN... : ROUNDS rotations over thread counts (THREADS, default 1 2 4 8 16), the
+# scenes (SCENES: paths under scenes/ without .json, default the four below) and the binaries in
+# turn (300 steps, fixed 10, error metric off); per run the median step and its parts over steps
+# 10-299 (stats.csv); then per set-up the median of the runs.
 export LD_LIBRARY_PATH=$PWD/devpack/lib:$LD_LIBRARY_PATH
 R=$1; shift
 nproc; lscpu | grep -E "Model name|L2|L3" | head -3
-for r in $(seq $R); do for T in ${THREADS:-1 2 4 8 16}; do for s in large_pyramid many_pyramids tumbler stress/swept_pit; do for b in "$@"; do
+for r in $(seq $R); do for T in ${THREADS:-1 2 4 8 16}; do for s in ${SCENES:-large_pyramid many_pyramids tumbler stress/swept_pit}; do for b in "$@"; do
   o=/tmp/r_$T
   devpack/$b run scenes/$s.json --no-render --frames 300 --threads $T --mode fixed --iterations 10 --error-every 0 --out $o > /dev/null 2>&1
   python3 - "$o/stats.csv" "$b $s $T $r" >> $OUT/runs.txt <<'PY'
