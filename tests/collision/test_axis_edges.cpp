@@ -16,6 +16,22 @@ namespace haif {
 namespace detail {
 namespace {
 
+// A hull of fewest to fewest + spread - 1 points drawn within ±half (null if it could not be built).
+std::shared_ptr<ConvexHull> randomHull(std::mt19937& rng, std::uniform_real_distribution<float>& u, int fewest,
+                                       int spread, const Vec3& half) {
+  std::vector<Vec3> pts;
+  const int n = fewest + int(rng() % uint32_t(spread));
+  for (int i = 0; i < n; ++i) pts.emplace_back(half.x() * u(rng), half.y() * u(rng), half.z() * u(rng));
+  return buildConvexHull(pts, nullptr);
+}
+
+// The same polyhedron, its separating-axis test made over every edge pair and all vertices.
+PolyView everyEdgePair(PolyView P) {
+  P.numAxisEdges = P.numEdges;
+  P.edgeFaces = nullptr;
+  return P;
+}
+
 TEST(AxisEdges, BoxesAndBoxLikeHullsKeepOneEdgePerDirection) {
   const BoxPoly box(Vec3(0.3f, 0.2f, 0.1f));
   EXPECT_EQ(box.view().numAxisEdges, 3);
@@ -47,10 +63,7 @@ TEST(AxisEdges, SameContactsAsEveryEdgePair) {
     xb.q = Quat(Eigen::AngleAxisf(3.0f * u(rng), Vec3(u(rng), u(rng), u(rng)).normalized()));
     for (int pair = 0; pair < 2; ++pair) {
       PolyView A = pair == 0 ? box.view() : hullView(*hull), B = hullView(*hull);
-      PolyView fullA = A, fullB = B;
-      fullA.numAxisEdges = fullA.numEdges;
-      fullB.numAxisEdges = fullB.numEdges;
-      fullA.edgeFaces = fullB.edgeFaces = nullptr;  // every edge pair, measured over all vertices
+      const PolyView fullA = everyEdgePair(A), fullB = everyEdgePair(B);
       Manifold fast, full;
       collidePolyPoly(A, xa, B, xb, 0.02f, fast);
       collidePolyPoly(fullA, xa, fullB, xb, 0.02f, full);
@@ -75,10 +88,7 @@ TEST(AxisEdges, PrunedEdgePairsOfRandomHullsFindWhatEveryPairFinds) {
   for (int shapes = 0; shapes < 6; ++shapes) {
     std::shared_ptr<ConvexHull> hulls[2];
     for (auto& h : hulls) {
-      std::vector<Vec3> pts;
-      const int n = 12 + int(rng() % 19);
-      for (int i = 0; i < n; ++i) pts.emplace_back(0.5f * u(rng), 0.35f * u(rng), 0.4f * u(rng));
-      h = buildConvexHull(pts, nullptr);
+      h = randomHull(rng, u, 12, 19, Vec3(0.5f, 0.35f, 0.4f));
       ASSERT_TRUE(h);
       ASSERT_EQ(h->edgeFaces.size(), h->edges.size()) << "every hull edge has its two faces";
     }
@@ -89,10 +99,7 @@ TEST(AxisEdges, PrunedEdgePairsOfRandomHullsFindWhatEveryPairFinds) {
       xb.q = Quat(Eigen::AngleAxisf(3.0f * u(rng), Vec3(u(rng), u(rng), u(rng)).normalized()));
       const PolyView A = hullView(*hulls[0]), B = hullView(*hulls[1]);
       ASSERT_TRUE(A.edgeFaces && B.edgeFaces);
-      PolyView fullA = A, fullB = B;
-      fullA.numAxisEdges = fullA.numEdges;
-      fullB.numAxisEdges = fullB.numEdges;
-      fullA.edgeFaces = fullB.edgeFaces = nullptr;
+      const PolyView fullA = everyEdgePair(A), fullB = everyEdgePair(B);
       Manifold fast, full;
       collidePolyPoly(A, xa, B, xb, 0.02f, fast);
       collidePolyPoly(fullA, xa, fullB, xb, 0.02f, full);
@@ -134,17 +141,11 @@ TEST(AxisEdges, HullsJustTouchingGetWhatEveryEdgePairGives) {
   for (int shapes = 0; shapes < 6; ++shapes) {
     std::shared_ptr<ConvexHull> hulls[2];
     for (auto& h : hulls) {
-      std::vector<Vec3> pts;
-      const int n = 12 + int(rng() % 19);
-      for (int i = 0; i < n; ++i) pts.emplace_back(0.3f * u(rng), 0.2f * u(rng), 0.25f * u(rng));
-      h = buildConvexHull(pts, nullptr);
+      h = randomHull(rng, u, 12, 19, Vec3(0.3f, 0.2f, 0.25f));
       ASSERT_TRUE(h);
     }
     const PolyView A = hullView(*hulls[0]), B = hullView(*hulls[1]);
-    PolyView fullA = A, fullB = B;
-    fullA.numAxisEdges = fullA.numEdges;
-    fullB.numAxisEdges = fullB.numEdges;
-    fullA.edgeFaces = fullB.edgeFaces = nullptr;
+    const PolyView fullA = everyEdgePair(A), fullB = everyEdgePair(B);
     for (int trial = 0; trial < 200; ++trial) {
       Transform xa, xb;
       xa.q = Quat(Eigen::AngleAxisf(3.0f * u(rng), Vec3(u(rng), u(rng), u(rng)).normalized()));
@@ -195,10 +196,7 @@ TEST(AxisEdges, AWiderMarginNeverLosesAnOverlapOfRandomHulls) {
   for (int shapes = 0; shapes < 6; ++shapes) {
     std::shared_ptr<ConvexHull> hulls[2];
     for (auto& h : hulls) {
-      std::vector<Vec3> pts;
-      const int n = 8 + int(rng() % 12);
-      for (int i = 0; i < n; ++i) pts.emplace_back(0.3f * u(rng), 0.25f * u(rng), 0.3f * u(rng));
-      h = buildConvexHull(pts, nullptr);
+      h = randomHull(rng, u, 8, 12, Vec3(0.3f, 0.25f, 0.3f));
       ASSERT_TRUE(h);
     }
     const PolyView A = hullView(*hulls[0]), B = hullView(*hulls[1]);
