@@ -6,6 +6,8 @@
 #include "collision/geometry.h"
 #include "collision/polytope.h"
 
+#include <algorithm>
+
 namespace haif {
 namespace detail {
 
@@ -111,12 +113,17 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
   // for the closest-point search below.
   const bool heightsKept = P.numFaces <= kMaxHeights;
   float above[2][kMaxHeights];
+  float highest[2] = {-1e30f, -1e30f};  // each end's greatest height; not kept: every face is tried
   float bestF = -1e30f;
   int face = 0;
   for (int f = 0; f < P.numFaces; ++f) {
     const ConvexHull::Face& F = P.faces[f];
     const float d0 = F.normal.dot(c0), d1 = F.normal.dot(c1);
-    if (heightsKept) above[0][f] = d0 - F.offset, above[1][f] = d1 - F.offset;
+    if (heightsKept) {
+      above[0][f] = d0 - F.offset, above[1][f] = d1 - F.offset;
+      highest[0] = std::max(highest[0], above[0][f]);
+      highest[1] = std::max(highest[1], above[1][f]);
+    }
     const float s = std::min(d0, d1) - F.offset - r;
     if (s > margin) return 0;
     if (s > bestF) { bestF = s; face = f; }
@@ -136,12 +143,9 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
     uint32_t id = 0;
     for (int e = 0; e < (isSeg ? 2 : 1); ++e) {
       const Vec3& c = e ? c1 : c0;
-      float highest = -1e30f;  // without the heights kept, every face is tried
-      if (heightsKept)
-        for (int f = 0; f < P.numFaces; ++f) highest = std::max(highest, above[e][f]);
       for (int f = 0; f < P.numFaces; ++f) {
         const float h = heightsKept ? above[e][f] : P.faces[f].normal.dot(c) - P.faces[f].offset;
-        if (h <= 0.0f || h * h >= best || h < highest - kHighestTol) continue;
+        if (h <= 0.0f || h * h >= best || h < highest[e] - kHighestTol) continue;
         const Vec3 q = c - h * P.faces[f].normal;
         if (!insideFace(P, f, q)) continue;
         best = h * h;
@@ -158,7 +162,8 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
     for (int k = 0; k < P.numEdges; ++k) {
       if (pruneEdges) {
         const uint32_t f1 = P.edgeFaces[k].first, f2 = P.edgeFaces[k].second;
-        const float lower = std::max(std::max(std::min(above[0][f1], above[isSeg][f1]), std::min(above[0][f2], above[isSeg][f2])), nearest);
+        const float lower = std::max({std::min(above[0][f1], above[isSeg][f1]),
+                                      std::min(above[0][f2], above[isSeg][f2]), nearest});
         if (lower > 0.0f && lower >= cut) continue;
       }
       const Vec3& a = P.verts[P.edges[k].first];

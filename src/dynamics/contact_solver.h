@@ -177,7 +177,6 @@ bool reaimForRelax(const BodyStore& bodies, const Vec3* linear, const Contact& c
 /// need not be unpacked to ask).
 bool wantsReaim(const Vec3* linear, const SolverParams& p, const ContactConstraint& cc);
 
-
 /// Applies the accumulated (warm-start) impulses of the constraints to the body velocities.
 void warmStart(VelocityView bodies, const ContactConstraint* cs, size_t n);
 inline void warmStart(BodyStore& bodies, const ContactConstraint* cs, size_t n) {
