@@ -1,25 +1,8 @@
-// Dense helpers of a manifold's normal block: the points' in-plane coordinates and basis, and a
-// symmetric 3x3 inverse. The chain solver (contact_chain.cpp) builds its links' rows with them, and
-// the block inverse (contact_prepare.cpp) inverts with invertSymmetric3.
+// Dense helpers of a manifold's normal block: the points' in-plane coordinates and basis. The chain
+// solver (contact_chain.cpp) builds its links' rows with them.
 #include "dynamics/contact_solver.h"
 
 namespace haif {
-
-bool invertSymmetric3(const double a[3][3], double out[3][3], double minDetRatio) {
-  const double c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1];
-  const double c01 = a[1][2] * a[2][0] - a[1][0] * a[2][2];
-  const double c02 = a[1][0] * a[2][1] - a[1][1] * a[2][0];
-  const double det = a[0][0] * c00 + a[0][1] * c01 + a[0][2] * c02;
-  if (!(a[0][0] > 0.0 && a[1][1] > 0.0 && a[2][2] > 0.0 && det > minDetRatio * a[0][0] * a[1][1] * a[2][2]))
-    return false;
-  out[0][0] = c00 / det;
-  out[1][0] = out[0][1] = c01 / det;
-  out[2][0] = out[0][2] = c02 / det;
-  out[1][1] = (a[0][0] * a[2][2] - a[0][2] * a[2][0]) / det;
-  out[2][1] = out[1][2] = (a[0][2] * a[1][0] - a[0][0] * a[1][2]) / det;
-  out[2][2] = (a[0][0] * a[1][1] - a[0][1] * a[1][0]) / det;
-  return true;
-}
 
 int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned mask, double B[kMaxManifoldPoints][3]) {
   // The span of [1, s, t] does not depend on where (s, t) are measured from, but the rank test does:
