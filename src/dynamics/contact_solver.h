@@ -35,6 +35,8 @@ struct SolverParams {
   /// Friction also pulls back the slow tangential drift of a sticking contact (Contact::anchorA/B),
   /// at anchorBeta / dt, capped at maxPushVelocity. Velocity-level friction alone let a card house
   /// creep apart (0.94 m after 2400 steps at 10 iterations; 7 mm with anchors after 3600).
+  /// The World pulls them only where rest damping does not act (no gravity, or rest damping off;
+  /// World::solverParams): where it does, it holds that creep itself.
   bool frictionAnchors = true;
   /// The anchors' rate: drift is creep, a slow leak, and wants a gentle pull. At the Baumgarte rate
   /// (0.2) a pile set sliding became a lattice of stiff springs the sweeps did not converge: a

@@ -18,6 +18,10 @@ constexpr float kMomentumFloor = 1e-5f;
 SolverParams World::solverParams() const {
   SolverParams sp = settings_.contact;
   sp.dt = settings_.dt;
+  // The anchors pull only where rest damping cannot hold a pile's creep (no gravity, or damping
+  // off): both stop the creep of resting contacts, and the anchors' pull also feeds the sway of a
+  // pile set sliding, which then topples (docs/solver.md, "Friction anchors").
+  if (restDampingSpeed(settings_.restDamping, settings_.gravity, settings_.dt) > 0.0f) sp.frictionAnchors = false;
   return sp;
 }
 
