@@ -32,6 +32,15 @@ PolyView everyEdgePair(PolyView P) {
   return P;
 }
 
+// The points of two manifolds of one overlapping pair agree in depth and normal (hulls pair
+// `shapes`, pose `trial`, for the message).
+void expectSamePoints(const Manifold& fast, const Manifold& full, int shapes, int trial) {
+  for (int k = 0; k < fast.count; ++k) {
+    EXPECT_NEAR(fast.points[k].depth, full.points[k].depth, 1e-4f) << "hulls " << shapes << ", trial " << trial;
+    EXPECT_LT((fast.points[k].normal - full.points[k].normal).norm(), 1e-3f) << "hulls " << shapes << ", trial " << trial;
+  }
+}
+
 TEST(AxisEdges, BoxesAndBoxLikeHullsKeepOneEdgePerDirection) {
   const BoxPoly box(Vec3(0.3f, 0.2f, 0.1f));
   EXPECT_EQ(box.view().numAxisEdges, 3);
@@ -111,10 +120,7 @@ TEST(AxisEdges, PrunedEdgePairsOfRandomHullsFindWhatEveryPairFinds) {
       }
       if (deepestFull >= 0.0f) {
         // Overlapping: the deepest axis is a face or a Minkowski-face edge pair, which both find.
-        for (int k = 0; k < fast.count; ++k) {
-          EXPECT_NEAR(fast.points[k].depth, full.points[k].depth, 1e-4f) << "hulls " << shapes << ", trial " << trial;
-          EXPECT_LT((fast.points[k].normal - full.points[k].normal).norm(), 1e-3f) << "hulls " << shapes << ", trial " << trial;
-        }
+        expectSamePoints(fast, full, shapes, trial);
       } else if (fast.count > 0) {
         // Apart within the margin: every axis only bounds the gap from below, and the full test
         // tries more of them, so the pruned one may see a smaller gap (its contact acts sooner),
@@ -164,10 +170,7 @@ TEST(AxisEdges, HullsJustTouchingGetWhatEveryEdgePairGives) {
       collidePolyPoly(fullA, xa, fullB, xb, 0.02f, full);
       if (full.count > 0 && full.deepest() > 0.0f) {
         ASSERT_EQ(fast.count, full.count) << "hulls " << shapes << ", trial " << trial;
-        for (int k = 0; k < fast.count; ++k) {
-          EXPECT_NEAR(fast.points[k].depth, full.points[k].depth, 1e-4f) << "hulls " << shapes << ", trial " << trial;
-          EXPECT_LT((fast.points[k].normal - full.points[k].normal).norm(), 1e-3f) << "hulls " << shapes << ", trial " << trial;
-        }
+        expectSamePoints(fast, full, shapes, trial);
         ++overlapping;
       } else if (full.count > 0) {
         // Apart within the margin: as above, the pruned test may see a smaller gap, never a larger.

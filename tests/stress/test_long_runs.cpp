@@ -28,6 +28,14 @@ float maxDropAfter(const std::string& scene, int steps, bool frictionAnchors, fl
   return drop;
 }
 
+// A wall pyramid of `base` boxes on the ground, every box given `speed` along x.
+void startSlidingPyramid(World& w, int base, float speed) {
+  addGround(w);
+  addPyramid2d(w, base);
+  for (uint32_t b = 0; b < w.bodyCount(); ++b)
+    if (w.bodies().isDynamic(b)) w.bodies().v[b] = Vec3(speed, 0.0f, 0.0f);
+}
+
 TEST(LongRuns, CardHouseStandsForAMinute) {
   // Seven cards held by friction alone. Velocity-level friction let them creep: 2 cm by step 1200,
   // collapsed (0.94 m) by 2400. Rest damping (haif/rest_damping.h) holds it (1.1 cm); the friction
@@ -44,10 +52,7 @@ TEST(LongRuns, ASlidingPyramidComesToRest) {
   // rate the sway grew instead: from 0.2 m/s, 1.5 m/s by step 200; from 0.5, 12 m/s by step 900
   // (SolverParams::anchorBeta).
   World w;
-  addGround(w);
-  addPyramid2d(w, 40);
-  for (uint32_t b = 0; b < w.bodyCount(); ++b)
-    if (w.bodies().isDynamic(b)) w.bodies().v[b] = Vec3(0.3f, 0.0f, 0.0f);
+  startSlidingPyramid(w, 40, 0.3f);
   float fastest = 0.0f, last = 0.0f;
   for (int i = 0; i < 900; ++i) {
     w.step();
@@ -65,10 +70,7 @@ TEST(LongRuns, APyramidThatSlidDoesNotKeepSwaying) {
   // kept it swaying: mean kinetic energy over steps 1200-1800 of 1.2e-3 J with it, 2e-5 J without
   // (a 40-box-base pyramid swayed so and toppled out of its plane in 7 of 12 runs from 0.35-1 m/s).
   World w;
-  addGround(w);
-  addPyramid2d(w, 30);
-  for (uint32_t b = 0; b < w.bodyCount(); ++b)
-    if (w.bodies().isDynamic(b)) w.bodies().v[b] = Vec3(1.0f, 0.0f, 0.0f);
+  startSlidingPyramid(w, 30, 1.0f);
   double energy = 0.0;
   int samples = 0;
   for (int i = 0; i < 1800; ++i) {
