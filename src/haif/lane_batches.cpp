@@ -1,10 +1,13 @@
 #include "haif/lane_batches.h"
 
+#include "haif/islands.h"
+
 #include <algorithm>
 
 namespace haif {
 
-void LaneBatcher::batch(const BodyStore& bodies, const Contact* contacts, const float* level, uint32_t* ids, uint32_t n,
+template <class Pair>
+void LaneBatcher::batch(const BodyStore& bodies, const Pair* contacts, const float* level, uint32_t* ids, uint32_t n,
                         uint8_t* run) {
   if (n == 0) return;
   if (lastBatch_.size() < bodies.size()) lastBatch_.resize(bodies.size(), -1);
@@ -23,7 +26,7 @@ void LaneBatcher::batch(const BodyStore& bodies, const Contact* contacts, const 
     return i;
   };
   for (uint32_t j = 0; j < n; ++j) {
-    const Contact& c = contacts[ids[j]];
+    const Pair& c = contacts[ids[j]];
     // Only awake dynamic bodies are written by a sweep; static and kinematic ends are shared freely.
     const bool ma = bodies.isAwakeDynamic(c.a), mb = bodies.isAwakeDynamic(c.b);
     int32_t after = -1;
@@ -51,12 +54,13 @@ void LaneBatcher::batch(const BodyStore& bodies, const Contact* contacts, const 
   for (uint32_t b = 0, s = 0; b < m; s += fill_[b], ++b) run[s] = fill_[b];
   std::copy(scratch_.begin(), scratch_.end(), ids);
   for (uint32_t j = 0; j < n; ++j) {  // leave lastBatch_ clear for the next range
-    const Contact& c = contacts[ids[j]];
+    const Pair& c = contacts[ids[j]];
     lastBatch_[c.a] = lastBatch_[c.b] = -1;
   }
 }
 
-void LaneBatcher::colourLevels(const BodyStore& bodies, const Contact* contacts, const float* level, uint32_t* ids,
+template <class Pair>
+void LaneBatcher::colourLevels(const BodyStore& bodies, const Pair* contacts, const float* level, uint32_t* ids,
                                uint32_t n) {
   if (colours_.size() < bodies.size()) colours_.resize(bodies.size(), 0u);
   colourOf_.resize(n);
@@ -67,7 +71,7 @@ void LaneBatcher::colourLevels(const BodyStore& bodies, const Contact* contacts,
     if (l1 - l0 < 2) continue;
     // Greedy colouring in solve order: the smallest colour neither body has in this level.
     for (uint32_t j = l0; j < l1; ++j) {
-      const Contact& c = contacts[ids[j]];
+      const Pair& c = contacts[ids[j]];
       const bool ma = bodies.isAwakeDynamic(c.a), mb = bodies.isAwakeDynamic(c.b);
       const uint32_t taken = (ma ? colours_[c.a] : 0u) | (mb ? colours_[c.b] : 0u);
       const uint32_t colour = ~taken ? uint32_t(__builtin_ctz(~taken)) : 31u;
@@ -81,11 +85,14 @@ void LaneBatcher::colourLevels(const BodyStore& bodies, const Contact* contacts,
     for (int c = 0; c < 32; ++c) at[c + 1] += at[c];
     for (uint32_t j = l0; j < l1; ++j) scratch_[l0 + at[colourOf_[j]]++] = ids[j];
     for (uint32_t j = l0; j < l1; ++j) {
-      const Contact& c = contacts[ids[j]];
+      const Pair& c = contacts[ids[j]];
       colours_[c.a] = colours_[c.b] = 0u;
       ids[j] = scratch_[j];
     }
   }
 }
+
+template void LaneBatcher::batch(const BodyStore&, const Contact*, const float*, uint32_t*, uint32_t, uint8_t*);
+template void LaneBatcher::batch(const BodyStore&, const ContactEdge*, const float*, uint32_t*, uint32_t, uint8_t*);
 
 }  // namespace haif

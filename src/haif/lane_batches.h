@@ -1,4 +1,6 @@
-// Grouping a contact range into lane batches for the wide (SIMD) sweep.
+// Grouping a contact range into lane batches: for the wide (SIMD) sweep, and as the scalar sweep's
+// order (neighbours that share no body overlap in the processor; docs/solver.md, "Interleaved solve
+// order").
 //
 // A wide sweep solves up to kLanes constraints at once, so the constraints of one batch must not
 // share a dynamic body. Any grouping would do that; this one also keeps the sweep's result: each
@@ -34,11 +36,14 @@ class LaneBatcher {
  public:
   /// Reorders contacts ids[0, n) into lane batches (see above) and writes run[0, n). Keeps its
   /// scratch buffers between calls; the result depends only on the input order and the bodies.
-  void batch(const BodyStore& bodies, const Contact* contacts, const float* level, uint32_t* ids, uint32_t n,
+  /// `Pair` is any record with body ids `a` and `b` (Contact, or the World's compact ContactEdge).
+  template <class Pair>
+  void batch(const BodyStore& bodies, const Pair* contacts, const float* level, uint32_t* ids, uint32_t n,
              uint8_t* run);
 
  private:
-  void colourLevels(const BodyStore& bodies, const Contact* contacts, const float* level, uint32_t* ids, uint32_t n);
+  template <class Pair>
+  void colourLevels(const BodyStore& bodies, const Pair* contacts, const float* level, uint32_t* ids, uint32_t n);
   std::vector<uint32_t> colours_;    // per body id: colours its contacts have in the current level
   std::vector<uint8_t> colourOf_;    // per slot of the range
   std::vector<int32_t> lastBatch_;   // per body id: last batch that holds it (-1: none yet)

@@ -26,16 +26,19 @@ void World::setThreads(int threads) {
   pool_ = settings_.threads > 1 ? std::make_unique<TsanPool>(settings_.threads) : nullptr;
 #endif
   phaseClocks_.assign(size_t(settings_.threads), PhaseClock{});
+  laneBatchers_.resize(size_t(settings_.threads));
 }
 
-World::PhaseClock& World::phaseClock() {
+size_t World::threadSlot() const {
 #ifdef HAIF_TSAN
   const int slot = TsanPool::threadIndex();
 #else
   const int slot = arena_ ? tbb::this_task_arena::current_thread_index() : 0;
 #endif
-  return phaseClocks_[slot >= 0 && size_t(slot) < phaseClocks_.size() ? size_t(slot) : 0];
+  return slot >= 0 && slot < workerThreads_ ? size_t(slot) : 0;
 }
+
+World::PhaseClock& World::phaseClock() { return phaseClocks_[threadSlot() < phaseClocks_.size() ? threadSlot() : 0]; }
 
 void World::resetPhaseClocks() { std::fill(phaseClocks_.begin(), phaseClocks_.end(), PhaseClock{}); }
 

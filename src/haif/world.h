@@ -230,7 +230,8 @@ class World {
   void copyVelocitiesIn(uint32_t island);   // bodies' velocities into the island's slots
   void copyVelocitiesOut(uint32_t island);  // and back
   void assignSlots(uint32_t layout, uint32_t bodies);  // for the island the splitter just split
-  LaneBatcher laneBatcher_;
+  std::vector<LaneBatcher> laneBatchers_;  // one per thread slot (threadSlot)
+  std::vector<uint32_t> laneRanges_;      // this step's ranges to batch: begin, end in islands_.contacts
   std::vector<uint8_t> laneRun_;  // per contact slot: length of the lane batch starting there, else 0
   std::vector<int32_t> wideOf_;   // per contact slot starting a batch: its wide_ index, or -1 (scalar)
   std::vector<WideContactBatch> wide_;  // packed rows of this step's wide batches (grows, then reused)
@@ -264,6 +265,8 @@ class World {
   };
   std::vector<PhaseClock> phaseClocks_;
   PhaseClock& phaseClock();
+  /// Index of the calling thread among the step's threads (0 .. threads − 1).
+  size_t threadSlot() const;
   void resetPhaseClocks();
   int solveErrorEvery_ = 0;
   double measurementMs_ = 0.0;  // time of this step's reference solve, excluded from its timings

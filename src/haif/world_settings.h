@@ -28,6 +28,10 @@ struct WorldSettings {
   /// lane_batches.h). Off by default: 3.8× faster per manifold in cache, but no faster yet on whole
   /// scenes (docs/solver.md, "Wide sweeps").
   bool wideSolve = false;
+  /// Sweep each island's contacts in lane-batch order (constraints that share no dynamic body side
+  /// by side), so the processor overlaps neighbours instead of waiting on each one's velocities. The
+  /// same result as the plain order to the bit (World::batchLanes); off only to compare the two.
+  bool interleaveSolveOrder = true;
   bool chainSolve = true;           ///< solve the normal rows of chain-shaped islands (stacks) exactly
   bool reuseManifolds = true;       ///< keep a pair's manifold while its bodies keep still (manifold_cache.h)
   JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)

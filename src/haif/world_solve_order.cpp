@@ -161,27 +161,43 @@ void World::assignSlots(uint32_t layout, uint32_t bodies) {
 }
 
 // Each range a sweep runs as one piece (an island, or a strip or tail of a split one) is grouped
-// into lane batches for the wide sweep; the order change does not change the sweep's result.
+// into lane batches: constraints that share no dynamic body side by side. The wide sweep solves a
+// batch in SIMD lanes. The scalar sweep goes through the same order, which it computes the same
+// result in (the batches keep each body's constraints in order, and constraints on disjoint bodies
+// commute), but faster: a constraint that shares no body with the one before it need not wait for
+// its velocities, so the processor overlaps the two. In top-down order it mostly follows a row of
+// boxes, each contact waiting on the last (many_pyramids' solve: 12.1 → 11.1 ms at 2 threads).
+// Levels (see lane_batches.h) fill the wide sweep's lanes and change its result; the scalar order
+// goes without them.
 void World::batchLanes() {
-  if (!settings_.wideSolve) return;
+  if (!settings_.wideSolve && !settings_.interleaveSolveOrder) return;
   laneRun_.resize(islands_.contacts.size());
-  const float* levels = settings_.topDownOrder ? order_.contactHeight.data() : nullptr;
+  const float* levels = settings_.topDownOrder && settings_.wideSolve ? order_.contactHeight.data() : nullptr;
+  laneRanges_.clear();
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
   for (uint32_t k = 0; k < m; ++k) {
     const Island& isl = islands_.islands[k];
-    uint32_t* ids = islands_.contacts.data() + isl.firstContact;
-    uint8_t* run = laneRun_.data() + isl.firstContact;
     const int32_t li = layoutOf_[k];
     if (li < 0) {
-      laneBatcher_.batch(bodies_, contacts_.data(), levels, ids, isl.contactCount, run);
+      laneRanges_.push_back(isl.firstContact);
+      laneRanges_.push_back(isl.firstContact + isl.contactCount);
       continue;
     }
     const StripLayout& layout = layouts_[li];
     for (uint32_t s = 0; s <= layout.strips; ++s) {
-      const uint32_t b = layout.start[s], e = layout.start[s + 1];
-      laneBatcher_.batch(bodies_, contacts_.data(), levels, ids + b, e - b, run + b);
+      laneRanges_.push_back(isl.firstContact + layout.start[s]);
+      laneRanges_.push_back(isl.firstContact + layout.start[s + 1]);
     }
   }
+  // Ranges share no dynamic body: batched concurrently, each thread with its own batcher.
+  parallelFor(uint32_t(laneRanges_.size() / 2), kIslandGrain, [&](uint32_t begin, uint32_t end) {
+    LaneBatcher& batcher = laneBatchers_[threadSlot()];
+    for (uint32_t r = begin; r < end; ++r) {
+      const uint32_t b = laneRanges_[2 * r], e = laneRanges_[2 * r + 1];
+      batcher.batch(bodies_, contactEdges_.data(), levels, islands_.contacts.data() + b, e - b, laneRun_.data() + b);
+    }
+  });
+  if (!settings_.wideSolve) return;
   // Batches of at least kMinWideLanes constraints are packed for the wide sweep.
   wideOf_.resize(laneRun_.size());
   uint32_t packed = 0;
