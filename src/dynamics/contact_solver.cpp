@@ -253,32 +253,53 @@ inline void restartDirectionOf(ContactConstraint& c) {
   store(c.direction + kMaxManifoldPoints, load(c.delta + kMaxManifoldPoints));
 }
 
+// One constraint of a sweep, adding to its range's residual and change.
+template <bool Restart, bool MeasureChange>
+[[gnu::always_inline]] inline void sweepOne(VelocityView bodies, ContactConstraint& c, float omega, bool useBias,
+                                            float& residual, double& change) {
+  if constexpr (Restart) restartDirectionOf(c);
+  if (c.count == 0) return;
+  // Static and kinematic bodies are read (their velocity is given) but never written, so
+  // islands that share a static body can be solved concurrently.
+  F4 va = load3(bodies.v[c.a]), wa = load3(bodies.w[c.a]), vb = load3(bodies.v[c.b]), wb = load3(bodies.w[c.b]);
+  // Friction first; normal rows last: non-penetration matters more than friction, so each sweep
+  // ends with the normal rows satisfied (see solveNormalBlock).
+  frictionRows(c, va, wa, vb, wb, omega, useBias);
+  residual = std::max(residual, normalRows(c, va, wa, vb, wb, omega, useBias));
+  if constexpr (MeasureChange) change += rowsChange(c);
+  if (c.dynA) {
+    store3(bodies.v[c.a], va);
+    store3(bodies.w[c.a], wa);
+  }
+  if (c.dynB) {
+    store3(bodies.v[c.b], vb);
+    store3(bodies.w[c.b], wb);
+  }
+}
+
 template <bool Restart, bool MeasureChange>
 SweepResult sweep(VelocityView bodies, ContactConstraint* cs, size_t n, float omega, bool useBias) {
   float residual = 0.0f;
   double change = 0.0;
-  for (size_t k = 0; k < n; ++k) {
-    ContactConstraint& c = cs[k];
-    if constexpr (Restart) restartDirectionOf(c);
-    if (c.count == 0) continue;
-    // Static and kinematic bodies are read (their velocity is given) but never written, so
-    // islands that share a static body can be solved concurrently.
-    F4 va = load3(bodies.v[c.a]), wa = load3(bodies.w[c.a]), vb = load3(bodies.v[c.b]), wb = load3(bodies.w[c.b]);
-    // Friction first; normal rows last: non-penetration matters more than friction, so each sweep
-    // ends with the normal rows satisfied (see solveNormalBlock).
-    frictionRows(c, va, wa, vb, wb, omega, useBias);
-    residual = std::max(residual, normalRows(c, va, wa, vb, wb, omega, useBias));
-    if constexpr (MeasureChange) change += rowsChange(c);
-    if (c.dynA) {
-      store3(bodies.v[c.a], va);
-      store3(bodies.w[c.a], wa);
-    }
-    if (c.dynB) {
-      store3(bodies.v[c.b], vb);
-      store3(bodies.w[c.b], wb);
-    }
-  }
+  for (size_t k = 0; k < n; ++k) sweepOne<Restart, MeasureChange>(bodies, cs[k], omega, useBias, residual, change);
   return {residual, change};
+}
+
+// Two ranges on disjoint bodies, a constraint of each in turn; each range's result on its own.
+template <bool Restart, bool MeasureChange>
+void sweepPair(VelocityView bodies, ContactConstraint* cs1, size_t n1, ContactConstraint* cs2, size_t n2, float omega,
+               bool useBias, SweepResult& r1, SweepResult& r2) {
+  float res1 = 0.0f, res2 = 0.0f;
+  double ch1 = 0.0, ch2 = 0.0;
+  const size_t both = std::min(n1, n2);
+  for (size_t k = 0; k < both; ++k) {
+    sweepOne<Restart, MeasureChange>(bodies, cs1[k], omega, useBias, res1, ch1);
+    sweepOne<Restart, MeasureChange>(bodies, cs2[k], omega, useBias, res2, ch2);
+  }
+  for (size_t k = both; k < n1; ++k) sweepOne<Restart, MeasureChange>(bodies, cs1[k], omega, useBias, res1, ch1);
+  for (size_t k = both; k < n2; ++k) sweepOne<Restart, MeasureChange>(bodies, cs2[k], omega, useBias, res2, ch2);
+  r1 = {res1, ch1};
+  r2 = {res2, ch2};
 }
 
 }  // namespace
@@ -289,6 +310,14 @@ SweepResult solveIteration(VelocityView bodies, ContactConstraint* cs, size_t n,
   if (restartDirection) return sweep<true, true>(bodies, cs, n, omega, useBias);
   return measureChange ? sweep<false, true>(bodies, cs, n, omega, useBias)
                        : sweep<false, false>(bodies, cs, n, omega, useBias);
+}
+
+void solveIterationPair(VelocityView bodies, ContactConstraint* cs1, size_t n1, ContactConstraint* cs2, size_t n2,
+                        float omega, bool useBias, bool restartDirection, bool measureChange, SweepResult& r1,
+                        SweepResult& r2) {
+  if (restartDirection) return sweepPair<true, true>(bodies, cs1, n1, cs2, n2, omega, useBias, r1, r2);
+  if (measureChange) return sweepPair<false, true>(bodies, cs1, n1, cs2, n2, omega, useBias, r1, r2);
+  sweepPair<false, false>(bodies, cs1, n1, cs2, n2, omega, useBias, r1, r2);
 }
 
 void startDirection(ContactConstraint* cs, size_t n) {

@@ -307,6 +307,14 @@ inline SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size
   return solveIteration(VelocityView(bodies), cs, n, omega, useBias, restartDirection, measureChange);
 }
 
+/// solveIteration over two ranges that share no dynamic body (two strips of a split island swept in
+/// the same phase), a constraint of each in turn, with each range's own result in r1 and r2: the
+/// same bits as two calls, but the two chains of velocity updates overlap in the processor (a thin
+/// strip's neighbours mostly share a body, and each waits for the last).
+void solveIterationPair(VelocityView bodies, ContactConstraint* cs1, size_t n1, ContactConstraint* cs2, size_t n2,
+                        float omega, bool useBias, bool restartDirection, bool measureChange, SweepResult& r1,
+                        SweepResult& r2);
+
 /// Nonsmooth nonlinear conjugate gradient on top of the sweeps (after Silcowitz, Niebe and Erleben
 /// 2010). A sweep's impulse change is the negative gradient of the projected problem; momentum
 /// along the previous direction, scaled by β = |Δ_k|² / |Δ_{k-1}|², carries the low-frequency part

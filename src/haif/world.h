@@ -123,6 +123,7 @@ class World {
   void splitGiantIslands();
   void batchLanes();
   template <class F> SweepResult forEachStrip(uint32_t island, F&& f);
+  template <class F, class Pair> SweepResult forEachStrip(uint32_t island, F&& f, Pair&& pair);
   /// f(begin, end) over island k's contacts: in chunks of `grain` in parallel for a split (giant)
   /// island, as one range on the calling thread otherwise.
   template <class F> void forEachContactChunk(uint32_t island, uint32_t grain, F&& f);

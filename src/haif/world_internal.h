@@ -110,26 +110,44 @@ void World::forEachIslandTimed(First&& first, Second&& second, bool firstIsSweep
 // island runs its strips in two parallel phases, even strips then odd ones, then its tail (see
 // island_split.h), and merges in strip order, so sums do not depend on the thread count. Any other
 // island is one range on the calling thread.
-template <class F>
-SweepResult World::forEachStrip(uint32_t k, F&& f) {
+// Where a phase has at least twice as many strips as threads, a task takes two of them (strips of a
+// phase share no dynamic body) and runs pair(b1, e1, b2, e2, r1, r2) on both ranges, writing each
+// one's result: the sweep interleaves them (solveIterationPair).
+template <class F, class Pair>
+SweepResult World::forEachStrip(uint32_t k, F&& f, Pair&& pair) {
   const int32_t li = layoutOf_[k];
   if (li < 0) return f(0u, islands_.islands[k].contactCount);
   const StripLayout& layout = layouts_[li];
   SweepResult* res = stripResult_.data() + size_t(li) * (kMaxStrips + 1);
   SweepResult total;
   for (uint32_t phase = 0; phase < 2; ++phase) {
-    const uint32_t tasks = (layout.strips + 1 - phase) / 2;
+    const uint32_t strips = (layout.strips + 1 - phase) / 2;  // strips 2i + phase, i < strips
+    const bool paired = strips >= 2 * uint32_t(workerThreads_);
+    const uint32_t tasks = paired ? (strips + 1) / 2 : strips;
     parallelFor(tasks, 1, [&](uint32_t begin, uint32_t end) {
       for (uint32_t t = begin; t < end; ++t) {
-        const uint32_t s = 2 * t + phase;
-        res[s] = f(layout.start[s], layout.start[s + 1]);
+        const uint32_t i = paired ? 2 * t : t, s = 2 * i + phase;
+        if (paired && i + 1 < strips) {
+          const uint32_t s2 = s + 2;
+          pair(layout.start[s], layout.start[s + 1], layout.start[s2], layout.start[s2 + 1], res[s], res[s2]);
+        } else {
+          res[s] = f(layout.start[s], layout.start[s + 1]);
+        }
       }
     });
-    for (uint32_t t = 0; t < tasks; ++t) total.merge(res[2 * t + phase]);
+    for (uint32_t i = 0; i < strips; ++i) total.merge(res[2 * i + phase]);
   }
   const uint32_t tail = layout.strips;
   total.merge(f(layout.start[tail], layout.start[tail + 1]));
   return total;
+}
+
+template <class F>
+SweepResult World::forEachStrip(uint32_t k, F&& f) {
+  return forEachStrip(k, f, [&](uint32_t b1, uint32_t e1, uint32_t b2, uint32_t e2, SweepResult& r1, SweepResult& r2) {
+    r1 = f(b1, e1);
+    r2 = f(b2, e2);
+  });
 }
 
 template <class F>

@@ -63,9 +63,15 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias, bool restartDirection, 
     });
   } else {
     const VelocityView velocities = velocitiesOf(k);
-    r = forEachStrip(k, [&](uint32_t b, uint32_t e) {
-      return solveIteration(velocities, cs + b, e - b, omega, useBias, restartDirection, measureChange);
-    });
+    r = forEachStrip(
+        k,
+        [&](uint32_t b, uint32_t e) {
+          return solveIteration(velocities, cs + b, e - b, omega, useBias, restartDirection, measureChange);
+        },
+        [&](uint32_t b1, uint32_t e1, uint32_t b2, uint32_t e2, SweepResult& r1, SweepResult& r2) {
+          solveIterationPair(velocities, cs + b1, e1 - b1, cs + b2, e2 - b2, omega, useBias, restartDirection,
+                             measureChange, r1, r2);
+        });
   }
   if (isl.jointCount > 0) {
     JointTree* tree = settings_.joints.treeSolve ? &jointTrees_[k] : nullptr;

@@ -3,6 +3,7 @@
 // block, passes after a pulling block, friction circle, twist limit, bounce in a relax sweep,
 // empty manifold), and the momentum step likewise.
 #include "dynamics/wide_contact_solver.h"
+#include "eight_boxes.h"
 
 #include <gtest/gtest.h>
 
@@ -11,59 +12,8 @@
 namespace haif {
 namespace {
 
-// Eight boxes, each alone on the static ground (body 0) with its own manifold and motion.
-struct EightBoxes {
-  BodyStore bodies;
-  Contact contacts[kLanes];
-  EightBoxes() {
-    bodies.add(BodyKind::Static, Transform{}, 0.0f, Mat3::Zero());
-    const float corners[4][2] = {{-0.5f, -0.5f}, {0.5f, -0.5f}, {0.5f, 0.5f}, {-0.5f, 0.5f}};
-    // Per lane: linear velocity, angular velocity, points, friction, restitution, depth.
-    struct Case {
-      Vec3 v, w;
-      int points;
-      float friction, restitution, depth;
-    };
-    const Case cases[kLanes] = {
-        {{0.0f, -0.1f, 0.0f}, {0.0f, 0.0f, 0.0f}, 4, 0.6f, 0.0f, 0.01f},     // resting, exact block
-        {{0.1f, -2.0f, 0.0f}, {0.7f, 0.0f, -0.4f}, 4, 0.0f, 0.0f, 0.0f},     // tilted impact, exact
-        {{0.0f, -0.5f, 0.0f}, {3.0f, 0.0f, 0.0f}, 4, 0.5f, 0.0f, 0.002f},    // lifting edge: passes
-        {{4.0f, -0.2f, 1.0f}, {0.0f, 0.0f, 0.0f}, 4, 0.3f, 0.0f, 0.0f},      // sliding: friction circle
-        {{0.0f, -0.3f, 0.0f}, {0.0f, 6.0f, 0.0f}, 4, 0.4f, 0.0f, 0.0f},      // spinning: twist limit
-        {{0.0f, -3.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, 4, 0.2f, 0.5f, 0.0f},      // bounce in relax sweeps
-        {{0.2f, -1.0f, 0.0f}, {0.0f, 0.0f, 0.5f}, 2, 0.5f, 0.0f, -0.003f},   // two points, speculative
-        {{0.0f, -1.0f, 0.3f}, {0.0f, 0.0f, 0.0f}, 1, 0.5f, 0.0f, 0.0f}};     // one point
-    for (int l = 0; l < kLanes; ++l) {
-      Transform t;
-      t.p = Vec3(3.0f * float(l), 0.5f, 0.0f);
-      const uint32_t id = bodies.add(BodyKind::Dynamic, t, 1.0f + 0.25f * float(l), Mat3::Identity() * 0.2f);
-      bodies.v[id] = cases[l].v;
-      bodies.w[id] = cases[l].w;
-      Contact& c = contacts[l];
-      c.a = 0;
-      c.b = id;
-      c.friction = cases[l].friction;
-      c.restitution = cases[l].restitution;
-      c.manifold.count = cases[l].points;
-      for (int i = 0; i < cases[l].points; ++i) {
-        ContactPoint& p = c.manifold.points[i];
-        p.position = t.p + Vec3(corners[i][0], -0.5f, corners[i][1]);
-        p.normal = Vec3::UnitY();
-        p.depth = cases[l].depth;
-        p.id = uint32_t(i);
-      }
-    }
-  }
-  /// The rows of the first `lanes` contacts, from cold (no warm start unless `sp` says so).
-  void prepare(ContactConstraint* cs, int lanes = kLanes, SolverParams sp = coldParams()) const {
-    for (int l = 0; l < lanes; ++l) prepareContact(bodies, contacts[l], uint32_t(l), sp, cs[l]);
-  }
-  static SolverParams coldParams() {
-    SolverParams sp;
-    sp.warmStart = false;
-    return sp;
-  }
-};
+using test::EightBoxes;
+static_assert(EightBoxes::kBoxes == kLanes, "a box a lane");
 
 void expectNear(const Vec3& a, const Vec3& b, const char* what, int body) {
   const float tol = 2e-5f * std::max(1.0f, b.norm());
