@@ -34,6 +34,8 @@ struct ContactEdge {
   float deepest = 0.0f;
   uint8_t count = 0;      ///< manifold points (0: not touching)
   bool unloaded = true;   ///< every point's normal impulse is zero (nothing to warm start from)
+  /// The pair has points now and had none before this step's narrow phase: a contact just made.
+  bool fresh = false;
   /// Overlapping, between an awake dynamic body and a static or kinematic one (haif/pinch.h).
   bool pressedByImmovable = false;
   bool overlapping = false;  ///< some point is deeper than zero (crushes pass along these: haif/pinch.h)

@@ -93,7 +93,8 @@ namespace {
 
 // What the stages after the narrow phase need of a contact, copied while it is in cache. `apart`:
 // how far apart a pair without points is known to be (the margin it was collided with).
-inline void noteEdge(const Contact& c, ContactEdge& edge, bool againstImmovable, float apart) {
+inline void noteEdge(const Contact& c, ContactEdge& edge, bool againstImmovable, float apart, bool fresh) {
+  edge.fresh = fresh && c.manifold.count > 0;
   edge.count = uint8_t(c.manifold.count);
   edge.deepest = c.manifold.count > 0 ? c.manifold.deepest() : -apart;
   edge.overlapping = edge.deepest > 0.0f;
@@ -160,8 +161,9 @@ void World::narrowPhase() {
   };
   // Every pair ends here: its edge written, and the removal test made (two tree nodes a pair: here,
   // in parallel, not in the serial pass).
-  auto finish = [&](uint32_t ci, const Contact& c, ContactEdge& edge, bool againstImmovable, float apart) {
-    noteEdge(c, edge, againstImmovable, apart);
+  auto finish = [&](uint32_t ci, const Contact& c, ContactEdge& edge, bool againstImmovable, float apart,
+                    bool fresh = false) {
+    noteEdge(c, edge, againstImmovable, apart, fresh);
     if (edge.count == 0 && !broadPhase_.fatOverlap(edge.a, edge.b)) collision_.pairFlags[ci] |= kPairApart;
   };
   parallelFor(n, kPairGrain, [&](uint32_t begin, uint32_t end) {
@@ -237,7 +239,7 @@ void World::narrowPhase() {
       }
       if ((old.count > 0) != (c.manifold.count > 0)) collision_.pairFlags[ci] = kPairWakes;
       anchor(c, xa, xb);
-      finish(ci, c, edge, againstImmovable, reach);
+      finish(ci, c, edge, againstImmovable, reach, old.count == 0);
     }
   });
 
