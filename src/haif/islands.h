@@ -33,8 +33,8 @@ struct ContactEdge {
   /// distance it is known to be apart (the margin the narrow phase collided it with).
   float deepest = 0.0f;
   uint8_t count = 0;      ///< manifold points (0: not touching)
-  bool unloaded = true;   ///< every point's normal impulse is zero (nothing to warm start from)
-  /// The pair has points now and had none before this step's narrow phase: a contact just made.
+  /// The pair has points now and had none before this step's narrow phase: a contact just made, so
+  /// every point's impulse is zero (nothing to warm start from).
   bool fresh = false;
   /// Overlapping, between an awake dynamic body and a static or kinematic one (haif/pinch.h).
   bool pressedByImmovable = false;

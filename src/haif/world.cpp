@@ -38,7 +38,8 @@ size_t World::threadSlot() const {
   return slot >= 0 && slot < workerThreads_ ? size_t(slot) : 0;
 }
 
-World::PhaseClock& World::phaseClock() { return phaseClocks_[threadSlot() < phaseClocks_.size() ? threadSlot() : 0]; }
+// threadSlot is below workerThreads_, which setThreads sized phaseClocks_ (and laneBatchers_) to.
+World::PhaseClock& World::phaseClock() { return phaseClocks_[threadSlot()]; }
 
 void World::resetPhaseClocks() { std::fill(phaseClocks_.begin(), phaseClocks_.end(), PhaseClock{}); }
 

@@ -99,9 +99,6 @@ inline void noteEdge(const Contact& c, ContactEdge& edge, bool againstImmovable,
   edge.deepest = c.manifold.count > 0 ? c.manifold.deepest() : -apart;
   edge.overlapping = edge.deepest > 0.0f;
   edge.pressedByImmovable = againstImmovable && edge.overlapping;
-  bool unloaded = true;
-  for (int i = 0; i < c.manifold.count; ++i) unloaded &= c.normalImpulse[i] == 0.0f;
-  edge.unloaded = unloaded;
 }
 
 // Sets a touching contact's static friction anchor where its points are now, unless it holds one
