@@ -18,12 +18,19 @@ void BroadPhase::addBody(uint32_t body, const Aabb& tight, bool isStatic) {
 }
 
 bool BroadPhase::update(uint32_t body, const Aabb& tight, const Vec3& lead) {
+  if (fits(body, tight)) return false;
   const int32_t p = proxy_[body];
-  if (movingTree_.fatAabb(p).contains(tight.expanded(keptMargin))) return false;
   if (!movedFlag_[body]) previousFat_[body] = movingTree_.fatAabb(p);
   movingTree_.moveProxy(p, tight.expanded(fatMargin).swept(lead));
   markMoved(body);
   return true;
+}
+
+void BroadPhase::moveDeferred(uint32_t body, const Aabb& tight, const Vec3& lead) {
+  const int32_t p = proxy_[body];
+  if (!movedFlag_[body]) previousFat_[body] = movingTree_.fatAabb(p);
+  movingTree_.setLeafBox(p, tight.expanded(fatMargin).swept(lead));
+  markMoved(body);
 }
 
 }  // namespace haif

@@ -26,6 +26,15 @@ class BroadPhase {
   /// re-inserted box also reaches `lead` (m) further along the body's path: a body in free flight
   /// then leaves its fat box every few steps instead of every step.
   bool update(uint32_t body, const Aabb& tight, const Vec3& lead = Vec3::Zero());
+  /// True when a moving body's tight box still fits its fat box (update would do nothing). Read-only:
+  /// bodies may be tested concurrently.
+  bool fits(uint32_t body, const Aabb& tight) const {
+    return movingTree_.fatAabb(proxy_[body]).contains(tight.expanded(keptMargin));
+  }
+  /// The move of update() for a body that does not fit, with the tree left as it is: for many moves
+  /// in one step, followed by rebuildMovingTree() before any query.
+  void moveDeferred(uint32_t body, const Aabb& tight, const Vec3& lead = Vec3::Zero());
+  void rebuildMovingTree() { movingTree_.rebuild(); }
   const Aabb& fatAabb(uint32_t body) const {
     return (isStatic_[body] ? staticTree_ : movingTree_).fatAabb(proxy_[body]);
   }

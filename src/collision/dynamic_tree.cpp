@@ -234,6 +234,64 @@ bool DynamicTree::rotateForArea(int32_t a) {
   return true;
 }
 
+void DynamicTree::rebuild() {
+  leaves_.clear();
+  inner_.clear();
+  for (int32_t i = 0; i < int32_t(nodes_.size()); ++i) {
+    const Node& n = nodes_[i];
+    if (n.height == 0) {
+      const Vec3 c = n.box.center();
+      leaves_.push_back({{c.x(), c.y(), c.z()}, i});
+    } else if (n.height > 0) {
+      inner_.push_back(i);  // a tree of L leaves has L - 1 inner nodes: they are reused
+    }
+  }
+  split_.resize(leaves_.size());
+  nextInner_ = 0;
+  root_ = leaves_.empty() ? kNull : buildRange(0, uint32_t(leaves_.size()));
+  if (root_ != kNull) nodes_[root_].parent = kNull;
+}
+
+int32_t DynamicTree::buildRange(uint32_t begin, uint32_t end) {
+  if (end - begin == 1) return leaves_[begin].node;
+  float lo[3], hi[3];
+  for (int k = 0; k < 3; ++k) lo[k] = hi[k] = leaves_[begin].centre[k];
+  for (uint32_t i = begin + 1; i < end; ++i)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], leaves_[i].centre[k]);
+      hi[k] = std::max(hi[k], leaves_[i].centre[k]);
+    }
+  int axis = hi[1] - lo[1] > hi[0] - lo[0] ? 1 : 0;
+  if (hi[2] - lo[2] > hi[axis] - lo[axis]) axis = 2;
+  // Split at the middle of the span, not at the median: a partition is one pass without branches,
+  // where finding the median took most of a rebuild (mispredicted comparisons). Left leaves fill
+  // split_ from the front, right ones from the back.
+  const float middle = 0.5f * (lo[axis] + hi[axis]);
+  uint32_t left = begin, right = end;
+  for (uint32_t i = begin; i < end; ++i) {
+    const bool isLeft = leaves_[i].centre[axis] < middle;
+    split_[isLeft ? left : right - 1] = leaves_[i];
+    left += isLeft;
+    right -= !isLeft;
+  }
+  uint32_t mid = left;
+  if (mid == begin || mid == end) {
+    mid = begin + (end - begin) / 2;  // all centres alike along every axis: any halves do
+  } else {
+    std::copy(split_.begin() + begin, split_.begin() + end, leaves_.begin() + begin);
+  }
+  const int32_t node = inner_[nextInner_++];
+  const int32_t c1 = buildRange(begin, mid), c2 = buildRange(mid, end);
+  Node& n = nodes_[node];
+  n.child1 = c1;
+  n.child2 = c2;
+  n.box = nodes_[c1].box.merged(nodes_[c2].box);
+  n.height = 1 + std::max(nodes_[c1].height, nodes_[c2].height);
+  nodes_[c1].parent = node;
+  nodes_[c2].parent = node;
+  return node;
+}
+
 float DynamicTree::internalArea() const {
   float sum = 0.0f;
   for (const Node& n : nodes_)

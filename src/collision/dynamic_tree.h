@@ -19,6 +19,13 @@ class DynamicTree {
   void destroyProxy(int32_t proxy);
   /// Replaces the proxy's fat box (remove + insert).
   void moveProxy(int32_t proxy, const Aabb& fat);
+  /// Replaces the proxy's fat box and leaves the tree as it is: queries may miss it until rebuild().
+  /// For many moves in one step, where building afresh costs less than moving each (broad_phase.h).
+  void setLeafBox(int32_t proxy, const Aabb& fat) { nodes_[proxy].box = fat; }
+  /// Builds the tree over its leaves afresh, top down: each node splits its leaves at the middle of
+  /// the span of their centres along the axis where they spread most. Leaves keep their proxy
+  /// numbers; the result depends only on the leaves' boxes and numbers.
+  void rebuild();
 
   const Aabb& fatAabb(int32_t proxy) const { return nodes_[proxy].box; }
   uint32_t userData(int32_t proxy) const { return nodes_[proxy].userData; }
@@ -71,11 +78,20 @@ class DynamicTree {
   bool rotateForArea(int32_t a);
   void refitUpwards(int32_t n);
   bool validateNode(int32_t n, int32_t parent) const;
+  int32_t buildRange(uint32_t begin, uint32_t end);
 
   std::vector<Node> nodes_;
   int32_t root_ = kNull;
   int32_t freeList_ = kNull;
   int32_t proxyCount_ = 0;
+  // rebuild()'s scratch, kept so that a rebuild allocates nothing once the tree has its size.
+  struct BuildLeaf {
+    float centre[3];
+    int32_t node;
+  };
+  std::vector<BuildLeaf> leaves_, split_;
+  std::vector<int32_t> inner_;
+  uint32_t nextInner_ = 0;
 };
 
 }  // namespace haif

@@ -180,6 +180,7 @@ class World {
     std::vector<std::vector<std::pair<uint32_t, uint32_t>>> newPairRuns;  // per run of moved bodies: pairs found
     std::vector<uint8_t> pairFlags;   // per contact: kPairWakes | kPairApart, this step
     std::vector<uint8_t> reusedFlag;  // per contact: its manifold was reused this step
+    std::vector<uint8_t> leftFat;     // per body: its box left its fat box this step
   } collision_;
   std::vector<ContactEdge> contactEdges_;  // per contact: its bodies and point count, from the narrow phase on
   PinchDetector pinch_;               // marks contacts of bodies pressed between immovable ones

@@ -5,6 +5,8 @@
 #include "collision/collide.h"
 #include "collision/compound.h"
 
+#include <algorithm>
+
 namespace haif {
 
 namespace {
@@ -26,9 +28,14 @@ void World::updateBroadPhase() {
   const float dt = settings_.dt;
   // Tight boxes (kept for buoyancy, metrics and the narrow phase's quick reject), then each swept
   // by this step's motion so fast bodies find their pairs before they pass through them.
+  collision_.leftFat.resize(n);
   parallelFor(n, kBoundsGrain, [&](uint32_t begin, uint32_t end) {
-    for (uint32_t i = begin; i < end; ++i)
-      if (bodies_.kind[i] != BodyKind::Static && !bodies_.asleep[i]) bounds_[i] = computeAabb(shapes_[i], bodies_.xf[i]);
+    for (uint32_t i = begin; i < end; ++i) {
+      collision_.leftFat[i] = 0;
+      if (bodies_.kind[i] == BodyKind::Static || bodies_.asleep[i]) continue;
+      bounds_[i] = computeAabb(shapes_[i], bodies_.xf[i]);
+      collision_.leftFat[i] = !broadPhase_.fits(i, bounds_[i].swept(dt * bodies_.v[i]));
+    }
   });
   // A dynamic body that touched nothing last step (alone in its island) is in flight: its fat box
   // reaches kFlightLeadSteps steps of its path ahead. A falling pile re-inserted and queried every
@@ -41,11 +48,19 @@ void World::updateBroadPhase() {
     const Island& isl = islands_.islands[k];
     return isl.bodyCount == 1 && isl.contactCount == 0 && isl.jointCount == 0;
   };
+  // Bodies that left their fat boxes get new ones. Moved one by one, each costs a removal and an
+  // insertion with rotations (serial); when many moved (a churning pile), the tree is built afresh
+  // instead, which costs less and queries faster (kRebuildShare).
+  const auto left = std::count(collision_.leftFat.begin(), collision_.leftFat.end(), uint8_t(1));
+  const bool rebuild = left > 0 && float(left) >= kRebuildShare * float(broadPhase_.movingTree().proxyCount());
   for (uint32_t i = 0; i < n; ++i) {
-    if (bodies_.kind[i] == BodyKind::Static || bodies_.asleep[i]) continue;
+    if (!collision_.leftFat[i]) continue;
     const Vec3 d = dt * bodies_.v[i];
-    broadPhase_.update(i, bounds_[i].swept(d), inFlight(i) ? Vec3(float(kFlightLeadSteps) * d) : Vec3::Zero());
+    const Vec3 lead = inFlight(i) ? Vec3(float(kFlightLeadSteps) * d) : Vec3::Zero();
+    if (rebuild) broadPhase_.moveDeferred(i, bounds_[i].swept(d), lead);
+    else broadPhase_.update(i, bounds_[i].swept(d), lead);
   }
+  if (rebuild) broadPhase_.rebuildMovingTree();
   // New pairs: the moved bodies' queries run in parallel, a list per run of kPairQueryGrain of
   // them (a churning pile re-inserts most of its bodies every step, and the queries were a sixth
   // of a swept pit's step, serial); the lists are then joined in order, so the contacts are made

@@ -38,6 +38,9 @@ constexpr uint32_t kPoseGrain = 512;
 constexpr uint32_t kBoundsGrain = 1024;
 /// Steps of its path a body in free flight has its broad-phase box reach ahead (updateBroadPhase).
 constexpr int kFlightLeadSteps = 4;
+/// Share of the moving bodies that must leave their fat boxes in one step for the broad phase's tree
+/// to be built afresh rather than moved into body by body (World::updateBroadPhase).
+constexpr float kRebuildShare = 0.25f;
 /// Narrow-phase pairs cost 0.1 to 10 microseconds each, very unevenly: small tasks balance them.
 constexpr uint32_t kPairGrain = 64;
 /// Contacts prepared in one chunk (row building, a few hundred nanoseconds each).
@@ -57,6 +60,7 @@ using world_detail::kBatchRows;
 using world_detail::kBodyGrain;
 using world_detail::kFlightLeadSteps;
 using world_detail::kBoundsGrain;
+using world_detail::kRebuildShare;
 using world_detail::kContactChunk;
 using world_detail::kHeightGrain;
 using world_detail::kIslandGrain;

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <random>
 #include <set>
 #include <utility>
 
@@ -67,6 +69,46 @@ TEST(BroadPhase, ALeadingBoxReportsEveryPairNoLaterThanTheSweptBoxesMeet) {
     }
     EXPECT_GE(pairs.size(), 10u);
   }
+}
+
+// A churning pile moves many bodies a step; the broad phase may then set their boxes and build
+// the tree afresh (World::updateBroadPhase). The new pairs must be those that moving each body
+// into the tree finds: they depend on the fat boxes only, not on the tree.
+TEST(BroadPhase, MovesFollowedByARebuildFindTheSamePairsAsMovesOneByOne) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> pos(-4.0f, 4.0f), step(-0.12f, 0.12f);
+  const uint32_t n = 600;
+  std::vector<Vec3> centre(n);
+  BroadPhase oneByOne, rebuilt;
+  for (uint32_t i = 0; i < n; ++i) {
+    centre[i] = Vec3(pos(rng), pos(rng), pos(rng));
+    oneByOne.addBody(i, cube(centre[i], 0.2f), false);
+    rebuilt.addBody(i, cube(centre[i], 0.2f), false);
+  }
+  auto pairsOf = [](BroadPhase& bp) {
+    std::set<std::pair<uint32_t, uint32_t>> pairs;
+    bp.findNewPairs([&](uint32_t a, uint32_t b) { EXPECT_TRUE(pairs.insert({std::min(a, b), std::max(a, b)}).second); });
+    return pairs;
+  };
+  EXPECT_EQ(pairsOf(oneByOne), pairsOf(rebuilt));
+  size_t found = 0, moved = 0;
+  for (int s = 0; s < 40; ++s) {
+    for (uint32_t i = 0; i < n; ++i) {
+      centre[i] += Vec3(step(rng), step(rng), step(rng));
+      const Aabb tight = cube(centre[i], 0.2f);
+      oneByOne.update(i, tight);
+      if (!rebuilt.fits(i, tight)) rebuilt.moveDeferred(i, tight);
+    }
+    moved += rebuilt.moved().size();
+    EXPECT_EQ(oneByOne.moved(), rebuilt.moved()) << "step " << s;
+    rebuilt.rebuildMovingTree();
+    ASSERT_TRUE(rebuilt.movingTree().validate()) << "step " << s;
+    const auto want = pairsOf(oneByOne), got = pairsOf(rebuilt);
+    EXPECT_EQ(got, want) << "step " << s;
+    found += want.size();
+  }
+  EXPECT_GE(moved, size_t(40 * n / 4));  // most steps would rebuild in a World
+  EXPECT_GE(found, 1000u);
 }
 
 }  // namespace
