@@ -35,6 +35,11 @@ class BroadPhase {
   /// in one step, followed by rebuildMovingTree() before any query.
   void moveDeferred(uint32_t body, const Aabb& tight, const Vec3& lead = Vec3::Zero());
   void rebuildMovingTree() { movingTree_.rebuild(); }
+  /// The same, the root's two subtrees built by runBoth (DynamicTree::rebuild).
+  template <class RunBoth>
+  void rebuildMovingTree(RunBoth&& runBoth) {
+    movingTree_.rebuild(runBoth);
+  }
   const Aabb& fatAabb(uint32_t body) const {
     return (isStatic_[body] ? staticTree_ : movingTree_).fatAabb(proxy_[body]);
   }

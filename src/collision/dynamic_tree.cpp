@@ -234,7 +234,7 @@ bool DynamicTree::rotateForArea(int32_t a) {
   return true;
 }
 
-void DynamicTree::rebuild() {
+bool DynamicTree::beginRebuild() {
   leaves_.clear();
   inner_.clear();
   for (int32_t i = 0; i < int32_t(nodes_.size()); ++i) {
@@ -247,13 +247,15 @@ void DynamicTree::rebuild() {
     }
   }
   split_.resize(leaves_.size());
-  nextInner_ = 0;
-  root_ = leaves_.empty() ? kNull : buildRange(0, uint32_t(leaves_.size()));
-  if (root_ != kNull) nodes_[root_].parent = kNull;
+  if (leaves_.size() < 2) {
+    root_ = leaves_.empty() ? kNull : leaves_[0].node;
+    if (root_ != kNull) nodes_[root_].parent = kNull;
+    return false;
+  }
+  return true;
 }
 
-int32_t DynamicTree::buildRange(uint32_t begin, uint32_t end) {
-  if (end - begin == 1) return leaves_[begin].node;
+uint32_t DynamicTree::splitRange(uint32_t begin, uint32_t end) {
   float lo[3], hi[3];
   for (int k = 0; k < 3; ++k) lo[k] = hi[k] = leaves_[begin].centre[k];
   for (uint32_t i = begin + 1; i < end; ++i)
@@ -274,22 +276,27 @@ int32_t DynamicTree::buildRange(uint32_t begin, uint32_t end) {
     left += isLeft;
     right -= !isLeft;
   }
-  uint32_t mid = left;
-  if (mid == begin || mid == end) {
-    mid = begin + (end - begin) / 2;  // all centres alike along every axis: any halves do
-  } else {
-    std::copy(split_.begin() + begin, split_.begin() + end, leaves_.begin() + begin);
-  }
-  const int32_t node = inner_[nextInner_++];
-  const int32_t c1 = buildRange(begin, mid), c2 = buildRange(mid, end);
-  Node& n = nodes_[node];
-  n.child1 = c1;
-  n.child2 = c2;
-  n.box = nodes_[c1].box.merged(nodes_[c2].box);
-  n.height = 1 + std::max(nodes_[c1].height, nodes_[c2].height);
-  nodes_[c1].parent = node;
-  nodes_[c2].parent = node;
+  if (left == begin || left == end) return begin + (end - begin) / 2;  // all centres alike: any halves do
+  std::copy(split_.begin() + begin, split_.begin() + end, leaves_.begin() + begin);
+  return left;
+}
+
+int32_t DynamicTree::buildRange(uint32_t begin, uint32_t end, uint32_t firstInner) {
+  if (end - begin == 1) return leaves_[begin].node;
+  const uint32_t mid = splitRange(begin, end);
+  const int32_t node = inner_[firstInner];
+  link(node, buildRange(begin, mid, firstInner + 1), buildRange(mid, end, firstInner + (mid - begin)));
   return node;
+}
+
+void DynamicTree::link(int32_t node, int32_t child1, int32_t child2) {
+  Node& n = nodes_[node];
+  n.child1 = child1;
+  n.child2 = child2;
+  n.box = nodes_[child1].box.merged(nodes_[child2].box);
+  n.height = 1 + std::max(nodes_[child1].height, nodes_[child2].height);
+  nodes_[child1].parent = node;
+  nodes_[child2].parent = node;
 }
 
 float DynamicTree::internalArea() const {

@@ -25,7 +25,26 @@ class DynamicTree {
   /// Builds the tree over its leaves afresh, top down: each node splits its leaves at the middle of
   /// the span of their centres along the axis where they spread most. Leaves keep their proxy
   /// numbers; the result depends only on the leaves' boxes and numbers.
-  void rebuild();
+  void rebuild() {
+    rebuild([](auto&& buildSide) {
+      buildSide(0);
+      buildSide(1);
+    });
+  }
+  /// The same tree, its root's two subtrees built by runBoth(buildSide), which must call
+  /// buildSide(0) and buildSide(1) once each, in either order or concurrently (they touch
+  /// disjoint leaves and nodes).
+  template <class RunBoth>
+  void rebuild(RunBoth&& runBoth) {
+    if (!beginRebuild()) return;
+    const uint32_t n = uint32_t(leaves_.size()), mid = splitRange(0, n);
+    int32_t side[2];
+    // Inner nodes are numbered in preorder: the root, its first subtree's mid - 1, then the rest.
+    runBoth([&](int k) { side[k] = k == 0 ? buildRange(0, mid, 1) : buildRange(mid, n, mid); });
+    root_ = inner_[0];
+    link(root_, side[0], side[1]);
+    nodes_[root_].parent = kNull;
+  }
 
   const Aabb& fatAabb(int32_t proxy) const { return nodes_[proxy].box; }
   uint32_t userData(int32_t proxy) const { return nodes_[proxy].userData; }
@@ -78,7 +97,10 @@ class DynamicTree {
   bool rotateForArea(int32_t a);
   void refitUpwards(int32_t n);
   bool validateNode(int32_t n, int32_t parent) const;
-  int32_t buildRange(uint32_t begin, uint32_t end);
+  bool beginRebuild();  // gathers the leaves; false when there are fewer than two (then done)
+  uint32_t splitRange(uint32_t begin, uint32_t end);  // partitions the leaves; returns the split
+  int32_t buildRange(uint32_t begin, uint32_t end, uint32_t firstInner);
+  void link(int32_t node, int32_t child1, int32_t child2);
 
   std::vector<Node> nodes_;
   int32_t root_ = kNull;
@@ -91,7 +113,6 @@ class DynamicTree {
   };
   std::vector<BuildLeaf> leaves_, split_;
   std::vector<int32_t> inner_;
-  uint32_t nextInner_ = 0;
 };
 
 }  // namespace haif

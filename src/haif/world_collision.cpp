@@ -60,7 +60,11 @@ void World::updateBroadPhase() {
     if (rebuild) broadPhase_.moveDeferred(i, bounds_[i].swept(d), lead);
     else broadPhase_.update(i, bounds_[i].swept(d), lead);
   }
-  if (rebuild) broadPhase_.rebuildMovingTree();
+  if (rebuild) broadPhase_.rebuildMovingTree([&](auto&& buildSide) {
+    parallelFor(2, 1, [&](uint32_t begin, uint32_t end) {
+      for (uint32_t k = begin; k < end; ++k) buildSide(int(k));
+    });
+  });
   // New pairs: the moved bodies' queries run in parallel, a list per run of kPairQueryGrain of
   // them (a churning pile re-inserts most of its bodies every step, and the queries were a sixth
   // of a swept pit's step, serial); the lists are then joined in order, so the contacts are made

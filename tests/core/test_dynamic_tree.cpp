@@ -8,6 +8,7 @@
 #include <cmath>
 #include <random>
 #include <set>
+#include <thread>
 #include <vector>
 
 namespace haif {
@@ -220,6 +221,40 @@ TEST(DynamicTree, ATreeBuiltAfreshAnswersEveryQueryAndIsAsTightAsOneBuiltTopDown
   items[2].alive = false;
   ASSERT_TRUE(tree.validate());
   EXPECT_EQ(treeQuery(tree, items[1].box), bruteQuery(items, items[1].box));
+}
+
+TEST(DynamicTree, ItsTwoHalvesBuiltConcurrentlyMakeTheSameTree) {
+  // The World builds the root's two subtrees on two threads; the tree must be the one a serial
+  // build makes, node for node (the order queries report leaves in is the tree's shape).
+  std::mt19937 rng(11);
+  DynamicTree serial, halves;
+  std::vector<int32_t> proxies;
+  for (uint32_t i = 0; i < 900; ++i) {
+    const Aabb box = randomBox(rng, 15.0f);
+    proxies.push_back(serial.createProxy(box, i));
+    ASSERT_EQ(halves.createProxy(box, i), proxies.back());
+  }
+  for (int32_t p : proxies) {
+    const Aabb box = randomBox(rng, 15.0f);
+    serial.setLeafBox(p, box);
+    halves.setLeafBox(p, box);
+  }
+  serial.rebuild();
+  halves.rebuild([](auto&& buildSide) {
+    std::thread second([&] { buildSide(1); });
+    buildSide(0);
+    second.join();
+  });
+  ASSERT_TRUE(halves.validate());
+  auto visitOrder = [](const DynamicTree& t, const Aabb& q) {
+    std::vector<uint32_t> out;
+    t.query(q, [&](uint32_t u) { out.push_back(u); });
+    return out;
+  };
+  const Aabb everything{Vec3::Constant(-100.0f), Vec3::Constant(100.0f)};
+  EXPECT_EQ(visitOrder(halves, everything), visitOrder(serial, everything));
+  EXPECT_EQ(halves.internalArea(), serial.internalArea());
+  EXPECT_EQ(halves.height(), serial.height());
 }
 
 TEST(DynamicTree, LeavesWithOneCentreStillBuildABalancedTree) {
