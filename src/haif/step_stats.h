@@ -32,6 +32,7 @@ struct StepStats {
   uint32_t awakeBodies = 0, sleepingBodies = 0;
   uint32_t contacts = 0, contactPoints = 0;  ///< touching manifolds and their points
   uint32_t newPairs = 0;
+  bool treeRebuilt = false;       ///< the broad phase built its tree afresh (many bodies left their fat boxes)
   uint32_t manifoldsReused = 0;   ///< touching pairs whose manifold moved with their bodies instead of being made again
   uint32_t stages = 0;            ///< StageBits
   float jointErrorM = 0;          ///< largest joint anchor error after the step (m); 0 without joints

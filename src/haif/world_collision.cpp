@@ -60,6 +60,7 @@ void World::updateBroadPhase() {
     if (rebuild) broadPhase_.moveDeferred(i, bounds_[i].swept(d), lead);
     else broadPhase_.update(i, bounds_[i].swept(d), lead);
   }
+  stats_.treeRebuilt = rebuild;
   if (rebuild) broadPhase_.rebuildMovingTree([&](auto&& buildSide) {
     parallelFor(2, 1, [&](uint32_t begin, uint32_t end) {
       for (uint32_t k = begin; k < end; ++k) buildSide(int(k));
