@@ -19,17 +19,16 @@ void BroadPhase::addBody(uint32_t body, const Aabb& tight, bool isStatic) {
 
 bool BroadPhase::update(uint32_t body, const Aabb& tight, const Vec3& lead) {
   if (fits(body, tight)) return false;
-  const int32_t p = proxy_[body];
-  if (!movedFlag_[body]) previousFat_[body] = movingTree_.fatAabb(p);
-  movingTree_.moveProxy(p, tight.expanded(fatMargin).swept(lead));
-  markMoved(body);
+  move(body, tight, lead, false);
   return true;
 }
 
-void BroadPhase::moveDeferred(uint32_t body, const Aabb& tight, const Vec3& lead) {
+void BroadPhase::move(uint32_t body, const Aabb& tight, const Vec3& lead, bool rebuildLater) {
   const int32_t p = proxy_[body];
   if (!movedFlag_[body]) previousFat_[body] = movingTree_.fatAabb(p);
-  movingTree_.setLeafBox(p, tight.expanded(fatMargin).swept(lead));
+  const Aabb fat = tight.expanded(fatMargin).swept(lead);
+  if (rebuildLater) movingTree_.setLeafBox(p, fat);
+  else movingTree_.moveProxy(p, fat);
   markMoved(body);
 }
 

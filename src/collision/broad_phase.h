@@ -31,9 +31,9 @@ class BroadPhase {
   bool fits(uint32_t body, const Aabb& tight) const {
     return movingTree_.fatAabb(proxy_[body]).contains(tight.expanded(keptMargin));
   }
-  /// The move of update() for a body that does not fit, with the tree left as it is: for many moves
-  /// in one step, followed by rebuildMovingTree() before any query.
-  void moveDeferred(uint32_t body, const Aabb& tight, const Vec3& lead = Vec3::Zero());
+  /// Gives a body that does not fit a new fat box (update() without its test). With `rebuildLater`
+  /// the tree is left as it is: for many moves in one step, then rebuildMovingTree() before any query.
+  void move(uint32_t body, const Aabb& tight, const Vec3& lead, bool rebuildLater);
   void rebuildMovingTree() { movingTree_.rebuild(); }
   /// The same, the root's two subtrees built by runBoth (DynamicTree::rebuild).
   template <class RunBoth>

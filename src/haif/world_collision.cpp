@@ -57,8 +57,7 @@ void World::updateBroadPhase() {
     if (!collision_.leftFat[i]) continue;
     const Vec3 d = dt * bodies_.v[i];
     const Vec3 lead = inFlight(i) ? Vec3(float(kFlightLeadSteps) * d) : Vec3::Zero();
-    if (rebuild) broadPhase_.moveDeferred(i, bounds_[i].swept(d), lead);
-    else broadPhase_.update(i, bounds_[i].swept(d), lead);
+    broadPhase_.move(i, bounds_[i].swept(d), lead, rebuild);
   }
   stats_.treeRebuilt = rebuild;
   if (rebuild) broadPhase_.rebuildMovingTree([&](auto&& buildSide) {
