@@ -26,6 +26,12 @@ struct Manifold {
     for (int i = 0; i < count; ++i) d = std::max(d, points[i].depth);
     return d;
   }
+  /// Depth of the nearest point, negative when every point is apart; needs a point.
+  float nearest() const {
+    float d = points[0].depth;
+    for (int i = 1; i < count; ++i) d = std::max(d, points[i].depth);
+    return d;
+  }
 };
 
 }  // namespace haif

@@ -32,6 +32,9 @@ struct ContactEdge {
   /// Depth of the deepest point (m; 0 when none overlaps). A pair without points: minus the
   /// distance it is known to be apart (the margin the narrow phase collided it with).
   float deepest = 0.0f;
+  /// Depth of the nearest point, negative when every point is apart (by that much); a pair without
+  /// points: as `deepest`.
+  float nearest = 0.0f;
   uint8_t count = 0;      ///< manifold points (0: not touching)
   /// The pair has points now and had none before this step's narrow phase: a contact just made, so
   /// every point's impulse is zero (nothing to warm start from).

@@ -169,6 +169,7 @@ void World::step() {
   islandBuilder_.build(bodies_, contactEdges_.data(), uint32_t(contactEdges_.size()), joints_, islands_,
                        parallelRanges());
   if (settings_.topDownOrder) orderContactsTopDown();
+  else order_.tail.assign(islands_.islands.size(), 0);
   if (settings_.coldStartFromWeight && settings_.contact.warmStart && settings_.topDownOrder) estimateColdImpulses();
   splitGiantIslands();
   batchLanes();

@@ -132,6 +132,13 @@ class World {
   template <class F> void forEachLaneRange(uint32_t island, F&& f);
   /// Against gravity (+y without gravity): what top-down order and strips are measured along.
   Vec3 upDirection() const;
+  /// Island k's top-down keys (in island order): when the island is no chain only because of
+  /// contacts whose points are all further apart than the slop and a fall's step (a thin plate's
+  /// contact with the plate two below, past the one between), their keys are moved to its end, so
+  /// the chain before them is solved exactly and they are swept after it (world_solve_order.cpp).
+  /// Returns how many were moved.
+  uint32_t moveOutOfReachToTail(uint32_t k, uint64_t* keys);
+  uint32_t tailOf(uint32_t k) const { return order_.tail[k]; }
   /// `restartDirection`: the island's momentum direction restarts from the last sweep's change
   /// (see solveIteration); only for joint-free islands swept plainly or wide. `measureChange`:
   /// fill SweepResult::change, which only the momentum step needs.
@@ -197,6 +204,8 @@ class World {
     std::vector<uint64_t> scratch;     // the radix sort's second buffer, beside keys
     std::vector<float> carried;        // per body: weight impulse (N s) it carries this step, for cold contacts
     std::vector<uint16_t> supports;    // per body: contacts holding it up
+    std::vector<uint8_t> outOfReach;   // per contact: moved to its island's tail (moveOutOfReachToTail)
+    std::vector<uint32_t> tail;        // per island: contacts at the end of its order that cannot touch this step
   } order_;
   std::vector<ContactConstraint> constraints_;
   std::vector<ChainLink> chainLinks_;  // parallel to constraints_; used for islands that form a chain

@@ -116,6 +116,7 @@ inline void noteEdge(const Contact& c, ContactEdge& edge, bool againstImmovable,
   edge.fresh = fresh && c.manifold.count > 0;
   edge.count = uint8_t(c.manifold.count);
   edge.deepest = c.manifold.count > 0 ? c.manifold.deepest() : -apart;
+  edge.nearest = c.manifold.count > 0 ? c.manifold.nearest() : -apart;
   edge.overlapping = edge.deepest > 0.0f;
   edge.pressedByImmovable = againstImmovable && edge.overlapping;
 }

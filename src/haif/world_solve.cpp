@@ -54,7 +54,12 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias, bool restartDirection, 
   const float omega = settings_.contact.omega;
   SweepResult r;
   if (isChain_[k]) {
-    r = solveChainIteration(bodies_, cs, chainLinks_.data() + isl.firstContact, isl.contactCount, omega, useBias);
+    // Contacts out of reach follow the chain (moveOutOfReachToTail), swept as usual.
+    const uint32_t chained = isl.contactCount - tailOf(k);
+    r = solveChainIteration(bodies_, cs, chainLinks_.data() + isl.firstContact, chained, omega, useBias);
+    if (chained < isl.contactCount)
+      r.merge(solveIteration(bodies_, cs + chained, isl.contactCount - chained, omega, useBias, restartDirection,
+                             measureChange));
   } else if (isWide(k)) {
     const LaneBatches lb = lanesOf(k);
     if (restartDirection) startDirectionLanes(cs, isl.contactCount, lb);
@@ -143,7 +148,7 @@ void World::solveIslands(int iterations) {
     });
     if (slots) copyVelocitiesIn(k);
     isChain_[k] = settings_.chainSolve && layoutOf_[k] < 0 && isl.jointCount == 0 &&
-                  prepareChain(contacts_.data(), cs, isl.contactCount, chainMark_.data(),
+                  prepareChain(contacts_.data(), cs, isl.contactCount - tailOf(k), chainMark_.data(),
                                chainLinks_.data() + isl.firstContact);
     const VelocityView velocities = velocitiesOf(k);
     if (sp.warmStart) forEachStrip(k, [&](uint32_t b, uint32_t e) {
