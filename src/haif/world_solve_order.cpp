@@ -56,7 +56,9 @@ void World::orderContactsTopDown() {
 // more contacts than bodies (no chain) and would not without them is reordered.
 uint32_t World::moveOutOfReachToTail(uint32_t k, uint64_t* keys) {
   const Island& isl = islands_.islands[k];
-  if (!settings_.chainSolve || pinchedBodies_ > 0 || isl.contactCount <= isl.bodyCount) return 0;
+  // Islands with joints are never solved as chains (World::solveIslands): their order stays.
+  if (!settings_.chainSolve || pinchedBodies_ > 0 || isl.jointCount > 0 || isl.contactCount <= isl.bodyCount)
+    return 0;
   const uint32_t* ids = islands_.contacts.data() + isl.firstContact;
   // Within the slop and a fall's step of touching: in reach. A pile has more such contacts than
   // bodies, and stops here.
