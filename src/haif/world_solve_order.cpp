@@ -66,7 +66,7 @@ uint32_t World::moveOutOfReachToTail(uint32_t k, uint64_t* keys) {
   auto apart = [&](uint32_t j) { return contactEdges_[ids[j]].nearest < -reach; };
   uint32_t near = 0;
   for (uint32_t j = 0; j < isl.contactCount && near <= isl.bodyCount; ++j) near += apart(j) ? 0u : 1u;
-  if (near > isl.bodyCount) return 0;
+  if (near > isl.bodyCount || near < 2) return 0;  // a chain has two links at least (prepareChain)
   for (uint32_t j = 0; j < isl.contactCount; ++j) {
     if (!apart(j)) continue;
     keys[j] = descendingKey(std::numeric_limits<float>::lowest(), ids[j]);

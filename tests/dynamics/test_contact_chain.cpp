@@ -272,6 +272,22 @@ TEST(ContactChain, ThinPlatesWhoseMarginReachesPastAPlateStillStackAsAChain) {
   }
 }
 
+TEST(ContactChain, ThinPlateStacksHaveOneStateAtAnyThreadCount) {
+  // Islands with a tail of contacts out of reach, ordered and solved concurrently.
+  test::expectSameStateForThreadCounts([](int threads) {
+    WorldSettings ws;
+    ws.threads = threads;
+    ws.iterations = 4;
+    World w(ws);
+    test::addGround(w);
+    for (int s = 0; s < 8; ++s)
+      for (int i = 0; i < 12; ++i)
+        test::addBox(w, Vec3(2.0f * float(s), 0.01f + 0.022f * float(i), 0.0f), Vec3(0.5f, 0.01f, 0.5f), 20.0f);
+    for (int s = 0; s < 120; ++s) w.step();
+    return w.stateHash();
+  });
+}
+
 TEST(ContactChain, SameStateForAnyThreadCount) {
   test::expectSameStateForThreadCounts([](int threads) {
     WorldSettings ws;
