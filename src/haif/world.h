@@ -204,7 +204,6 @@ class World {
     std::vector<uint64_t> scratch;     // the radix sort's second buffer, beside keys
     std::vector<float> carried;        // per body: weight impulse (N s) it carries this step, for cold contacts
     std::vector<uint16_t> supports;    // per body: contacts holding it up
-    std::vector<uint8_t> outOfReach;   // per contact: moved to its island's tail (moveOutOfReachToTail)
     std::vector<uint32_t> tail;        // per island: contacts at the end of its order that cannot touch this step
   } order_;
   std::vector<ContactConstraint> constraints_;

@@ -33,7 +33,6 @@ void World::orderContactsTopDown() {
   // (IslandSet), so its keys are made in index order and sort by a few radix passes.
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
   order_.scratch.resize(order_.keys.size());
-  order_.outOfReach.assign(contacts_.size(), 0);
   order_.tail.assign(m, 0);
   parallelFor(m, kIslandGrain, [&](uint32_t begin, uint32_t end) {
     for (uint32_t k = begin; k < end; ++k) {
@@ -71,7 +70,6 @@ uint32_t World::moveOutOfReachToTail(uint32_t k, uint64_t* keys) {
     if (!apart(j)) continue;
     keys[j] = descendingKey(std::numeric_limits<float>::lowest(), ids[j]);
     order_.contactHeight[ids[j]] = std::numeric_limits<float>::lowest();
-    order_.outOfReach[ids[j]] = 1;
   }
   return isl.contactCount - near;
 }
@@ -93,7 +91,6 @@ void World::estimateColdImpulses() {
   // A support: a vertical-ish contact; its upper body is the one on the normal's upward side.
   auto upper = [&](const Contact& c, float& slope) -> int64_t {
     slope = c.manifold.points[0].normal.dot(up);
-    if (order_.outOfReach[&c - contacts_.data()]) return -1;  // at the tail, holding nothing up
     if (std::fabs(slope) < 0.7f) return -1;
     const uint32_t u = slope > 0.0f ? c.b : c.a;
     return bodies_.isAwakeDynamic(u) ? int64_t(u) : -1;
@@ -116,12 +113,14 @@ void World::estimateColdImpulses() {
       const Island& isl = islands_.islands[k];
       const uint32_t* bodies = islands_.bodies.data() + isl.firstBody;
       const uint32_t* contacts = islands_.contacts.data() + isl.firstContact;
+      // A tail of contacts out of reach (moveOutOfReachToTail) holds nothing up: left out.
+      const uint32_t held = isl.contactCount - tailOf(k);
       float slope;
       // A pile that has settled has no cold support left: its loads need not be added up (in
       // large_pyramid that was 0.4 ms a step, serial on its one island).
       bool anyCold = false;
       // Only contacts whose edge says they carry no impulse are read.
-      for (uint32_t j = 0; j < isl.contactCount && !anyCold; ++j) {
+      for (uint32_t j = 0; j < held && !anyCold; ++j) {
         const uint32_t ci = contacts[j];
         anyCold = contactEdges_[ci].count > 0 && isCold(ci) && upper(contacts_[ci], slope) >= 0;
       }
@@ -130,12 +129,12 @@ void World::estimateColdImpulses() {
         order_.carried[bodies[j]] = 0.0f;
         order_.supports[bodies[j]] = 0;
       }
-      for (uint32_t j = 0; j < isl.contactCount; ++j) {
+      for (uint32_t j = 0; j < held; ++j) {
         const int64_t u = upper(contacts_[contacts[j]], slope);
         if (u >= 0 && order_.supports[u] < 0xffff) ++order_.supports[u];
       }
       // Islands' contacts are in top-down order: a body's load is complete before its supports are met.
-      for (uint32_t j = 0; j < isl.contactCount; ++j) {
+      for (uint32_t j = 0; j < held; ++j) {
         Contact& c = contacts_[contacts[j]];
         const int64_t u = upper(c, slope);
         if (u < 0) continue;

@@ -243,20 +243,41 @@ TEST(ContactChain, HeavySpheresLandingOnASmallSpinningBoxStaySane) {
   EXPECT_LT(peak, 4.0f);
 }
 
+// Plates 1 m wide and 2 cm thick (20 kg), 2 mm apart, stacked on the ground at x: the 2 cm
+// speculative margin reaches past each plate to the one below it. Returns the ids, bottom first.
+constexpr float kPlateHalf = 0.01f, kPlatePitch = 2.0f * kPlateHalf + 0.002f;
+std::vector<uint32_t> addPlateStack(World& w, int plates, float x) {
+  std::vector<uint32_t> ids;
+  for (int i = 0; i < plates; ++i)
+    ids.push_back(
+        test::addBox(w, Vec3(x, kPlateHalf + kPlatePitch * float(i), 0.0f), Vec3(0.5f, kPlateHalf, 0.5f), 20.0f));
+  return ids;
+}
+
+// The state hash of eight stacks made by addStack(w, s), 120 steps at 4 iterations, on `threads`.
+template <class AddStack>
+uint64_t eightStacksAtFourIterations(int threads, AddStack addStack) {
+  WorldSettings ws;
+  ws.threads = threads;
+  ws.iterations = 4;
+  World w(ws);
+  test::addGround(w);
+  for (int s = 0; s < 8; ++s) addStack(w, s);
+  for (int s = 0; s < 120; ++s) w.step();
+  return w.stateHash();
+}
+
 TEST(ContactChain, ThinPlatesWhoseMarginReachesPastAPlateStillStackAsAChain) {
-  // 30 plates 1 m wide and 2 cm thick, 2 mm apart: the 2 cm speculative margin reaches past each
-  // plate to the one below it, so the island has more contacts than bodies and was swept, not
-  // solved as a chain. At 4 iterations (3 sweeps and a relax) it sank into itself and sprang back
-  // for the whole minute (RMS 1.5 m/s). Those contacts now follow the chain (World::moveOutOfReachToTail).
+  // 30 plates: the island has more contacts than bodies and was swept, not solved as a chain. At
+  // 4 iterations (3 sweeps and a relax) it sank into itself (plates 0.45 m into each other) and
+  // sprang back for the whole minute. Those contacts now follow the chain
+  // (World::moveOutOfReachToTail).
   WorldSettings ws;
   ws.iterations = 4;
   World w(ws);
   test::addGround(w);
   const int plates = 30;
-  const float half = 0.01f, pitch = 2.0f * half + 0.002f;
-  std::vector<uint32_t> ids;
-  for (int i = 0; i < plates; ++i)
-    ids.push_back(test::addBox(w, Vec3(0.0f, half + pitch * float(i), 0.0f), Vec3(0.5f, half, 0.5f), 20.0f));
+  const std::vector<uint32_t> ids = addPlateStack(w, plates, 0.0f);
   w.step();
   int pastAPlate = 0;
   for (const Contact& c : w.contacts())
@@ -268,36 +289,21 @@ TEST(ContactChain, ThinPlatesWhoseMarginReachesPastAPlateStillStackAsAChain) {
     const Vec3 p = w.bodies().xf[ids[size_t(i)]].p;
     EXPECT_LT(std::hypot(p.x(), p.z()), 1e-3f) << "plate " << i;
     // Resting on the one below: the gaps closed, no plate sunk into another beyond the slop.
-    EXPECT_NEAR(p.y(), half + 2.0f * half * float(i), 0.005f + 1e-3f) << "plate " << i;
+    EXPECT_NEAR(p.y(), kPlateHalf + 2.0f * kPlateHalf * float(i), 0.005f + 1e-3f) << "plate " << i;
   }
 }
 
 TEST(ContactChain, ThinPlateStacksHaveOneStateAtAnyThreadCount) {
   // Islands with a tail of contacts out of reach, ordered and solved concurrently.
   test::expectSameStateForThreadCounts([](int threads) {
-    WorldSettings ws;
-    ws.threads = threads;
-    ws.iterations = 4;
-    World w(ws);
-    test::addGround(w);
-    for (int s = 0; s < 8; ++s)
-      for (int i = 0; i < 12; ++i)
-        test::addBox(w, Vec3(2.0f * float(s), 0.01f + 0.022f * float(i), 0.0f), Vec3(0.5f, 0.01f, 0.5f), 20.0f);
-    for (int s = 0; s < 120; ++s) w.step();
-    return w.stateHash();
+    return eightStacksAtFourIterations(threads, [](World& w, int s) { addPlateStack(w, 12, 2.0f * float(s)); });
   });
 }
 
 TEST(ContactChain, SameStateForAnyThreadCount) {
   test::expectSameStateForThreadCounts([](int threads) {
-    WorldSettings ws;
-    ws.threads = threads;
-    ws.iterations = 4;
-    World w(ws);
-    test::addGround(w);
-    for (int s = 0; s < 8; ++s) test::addColumn(w, 12, 3.0f * float(s), 0.0f, 1.01f);
-    for (int s = 0; s < 120; ++s) w.step();
-    return w.stateHash();
+    return eightStacksAtFourIterations(
+        threads, [](World& w, int s) { test::addColumn(w, 12, 3.0f * float(s), 0.0f, 1.01f); });
   });
 }
 
