@@ -28,13 +28,37 @@ JsonNode JsonNode::element(size_t i) const {
   return n;
 }
 
+std::string oneLine(const std::string& text) {
+  static const char* const kHex = "0123456789abcdef";
+  std::string out;
+  out.reserve(text.size());
+  for (const char ch : text) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c >= 0x20 && c != 0x7f) {
+      out += ch;
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else {
+      out += "\\u00";
+      out += kHex[c >> 4];
+      out += kHex[c & 15];
+    }
+  }
+  return out;
+}
+
+// Places and messages quote keys and strings from the input, which may hold escaped newlines.
 void fail(const JsonNode& node, const std::string& message) {
-  throw SceneError{node.pointer, node.place.empty() ? "scene" : node.place, message, false};
+  throw SceneError{node.pointer, node.place.empty() ? "scene" : oneLine(node.place), oneLine(message), false};
 }
 
 void failAtKey(const JsonNode& object, const std::string& key, const std::string& message) {
   const JsonNode m = object.member(key);
-  throw SceneError{m.pointer, m.place, message, true};
+  throw SceneError{m.pointer, oneLine(m.place), oneLine(message), true};
 }
 
 std::string formatNumber(double v) {

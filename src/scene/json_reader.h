@@ -43,6 +43,9 @@ struct JsonNode {
 /// Throws SceneError pointing at the key of member `key` of `object`.
 [[noreturn]] void failAtKey(const JsonNode& object, const std::string& key, const std::string& message);
 
+/// `text` with control characters written as escapes (\n, \t, \u0001), so a message that quotes a
+/// key, a string or a path from the input stays one line. Idempotent: applying it twice is harmless.
+std::string oneLine(const std::string& text);
 /// Short text of a value for "(got ...)" parts of messages.
 std::string describeValue(const Json& v);
 /// A number as people write it, to float precision: -2, 0.5, 1e+30.

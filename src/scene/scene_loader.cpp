@@ -30,12 +30,12 @@ std::string stemOf(const std::string& path) {
 // "FILE:LINE:COL" of a byte offset.
 std::string formatLocation(const std::string& path, const std::string& text, size_t offset) {
   const TextLocation loc = locationOfOffset(text, offset);
-  return path + ":" + std::to_string(loc.line) + ":" + std::to_string(loc.column);
+  return oneLine(path) + ":" + std::to_string(loc.line) + ":" + std::to_string(loc.column);
 }
 
 std::string formatError(const std::string& path, const std::string& text, size_t offset, const std::string& place,
                         const std::string& message) {
-  return formatLocation(path, text, offset) + ": " + place + ": " + message;
+  return formatLocation(path, text, offset) + ": " + oneLine(place) + ": " + oneLine(message);
 }
 
 void parseSettings(const JsonNode& node, SimSettings& settings) {
@@ -241,7 +241,7 @@ bool parseSceneText(const std::string& text, const std::string& pathForMessages,
   SceneIssue issue;
   if (!validateScene(scene, issue)) {
     error = formatLocation(pathForMessages, text, positions.nearestValueOffset(issuePointer(issue, ctx))) + ": " +
-            issue.describe(scene);
+            oneLine(issue.describe(scene));
     return false;
   }
   out = std::move(scene);

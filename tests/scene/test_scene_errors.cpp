@@ -38,6 +38,16 @@ TEST(SceneErrors, UnknownKeysSuggestTheClosestKnownOne) {
                "settings.itrations: unknown key (did you mean 'iterations'?)");
 }
 
+// Keys and strings quoted back may hold escaped control characters: the message stays one line.
+TEST(SceneErrors, QuotedKeysAndStringsWithNewlinesStayOnOneLine) {
+  EXPECT_EQ(parseError(R"({"bo\ndies": []})"), R"(mem/bad.json:1:2: bo\ndies: unknown key (did you mean 'bodies'?))");
+  const std::string type = parseError(body(R"("type": "dyn\u0001amic\tx\r")"));
+  EXPECT_NE(type.find(R"(unknown body type 'dyn\u0001amic\tx\r')"), std::string::npos) << type;
+  const std::string nested = parseError(R"({"bodies": [{"shape": {"type": "sphere"}, "a\nb": {"c\nd": 1}}]})");
+  EXPECT_NE(nested.find(R"(bodies[0].a\nb: unknown key)"), std::string::npos) << nested;
+  for (const std::string& e : {type, nested}) EXPECT_EQ(e.find_first_of("\n\r\t\x01"), std::string::npos) << e;
+}
+
 TEST(SceneErrors, CommentKeysAreIgnored) {
   EXPECT_EQ(parseOk(R"({"_comment": "hi", "bodies": [{"_note": 1, "shape": {"type": "sphere"}}]})").bodies.size(), 1u);
 }
