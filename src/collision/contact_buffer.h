@@ -19,7 +19,8 @@ struct ContactCandidate {
 };
 
 /// Picks at most 4 of `count` candidates: the deepest (ties broken towards the outside of the
-/// patch), the one farthest from it, then the two that maximise the area of the contact polygon.
+/// patch), the one farthest from it across the normal, then the two that maximise the area of the
+/// contact polygon (seen along the normal; equal spreads go to the deeper candidate).
 /// Writes them to `out` and returns how many were written.
 int reduceContacts(const ContactCandidate* pts, int count, ContactCandidate* out);
 

@@ -50,6 +50,31 @@ TEST(PlaneBox, InclinedPlane) {
   expectAll(m, n, 0.05f, 1e-5f);
 }
 
+// A box (or hull) thinner than the margin has all its corners in reach of the plane: the manifold
+// is its four bottom corners, never a top corner above one of them (which is as far across the
+// contact but 1.5 cm farther away, and left a Jenga block standing on three points).
+TEST(PlaneBox, ThinnerThanTheMarginKeepsItsBottomFace) {
+  const Vec3 he(0.0375f, 0.0075f, 0.0125f);
+  for (const float yaw : {0.0f, 0.3f, 1.2f}) {
+    const Transform at = xf(Vec3(0.2f, he.y(), -0.1f), axisAngle(Vec3::UnitY(), yaw));
+    Manifold m;
+    ASSERT_EQ(collide(kGround, xf(Vec3::Zero()), Shape::box(he), at, 0.02f, m), 4) << yaw;
+    expectAll(m, Vec3::UnitY(), 0.0f, 1e-5f);
+    for (float x : {-he.x(), he.x()})
+      for (float z : {-he.z(), he.z()}) EXPECT_GE(findPoint(m, at.apply(Vec3(x, -he.y(), z)), 1e-5f), 0) << yaw;
+  }
+  std::string err;
+  std::vector<Vec3> plate;
+  for (float y : {-0.005f, 0.005f})
+    for (float x : {-0.5f, 0.5f})
+      for (float z : {-0.5f, 0.5f}) plate.push_back(Vec3(x, y, z));
+  auto hull = buildConvexHull(plate, &err);
+  ASSERT_TRUE(hull) << err;
+  Manifold m;
+  ASSERT_EQ(collide(kGround, xf(Vec3::Zero()), Shape::convexHull(hull), xf(Vec3(0, 0.004f, 0)), 0.02f, m), 4);
+  expectAll(m, Vec3::UnitY(), 0.001f, 1e-5f);
+}
+
 TEST(PlaneCapsule, LyingGivesTwoPoints) {
   const Shape cap = Shape::capsule(0.25f, 1.0f);
   Manifold m;
