@@ -139,12 +139,14 @@ class World {
   /// Returns how many were moved.
   uint32_t moveOutOfReachToTail(uint32_t k, uint64_t* keys);
   uint32_t tailOf(uint32_t k) const { return order_.tail[k]; }
-  /// Every point of contact `ci` is farther apart than the slop and a fall's step (g dt²): nothing
-  /// can close it this step unless something moves fast, so it holds nothing up.
-  bool outOfReach(uint32_t ci) const {
-    const float dt = settings_.dt;
-    return contactEdges_[ci].nearest < -(settings_.contact.slop + settings_.gravity.norm() * dt * dt);
+  /// How far apart (m) a contact's points may be and still close this step: the slop and a fall's
+  /// step (g dt²). Taken once per pass, not per contact (a square root).
+  float reachOfAStep() const {
+    return settings_.contact.slop + settings_.gravity.norm() * settings_.dt * settings_.dt;
   }
+  /// Every point of contact `ci` is farther apart than `reach` (reachOfAStep): nothing can close it
+  /// this step unless something moves fast, so it holds nothing up.
+  bool outOfReach(uint32_t ci, float reach) const { return contactEdges_[ci].nearest < -reach; }
   /// `restartDirection`: the island's momentum direction restarts from the last sweep's change
   /// (see solveIteration); only for joint-free islands swept plainly or wide. `measureChange`:
   /// fill SweepResult::change, which only the momentum step needs.
