@@ -41,6 +41,7 @@ struct PinnedBody {
 /// by a few mm a step (a turn of 1 rad about an axis passing 4 mm from it), and the joint projection
 /// that put it back tipped the spin axis without turning its momentum: a top spun at 60 rad/s sank
 /// to hanging straight down in 3 s instead of precessing.
-void integratePinned(BodyStore& bodies, const PinnedBody& pin, float dt, float sleepLinear, float sleepAngular);
+void integratePinned(BodyStore& bodies, const PinnedBody& pin, const Vec3& gravity, float dt, float sleepLinear,
+                     float sleepAngular);
 
 }  // namespace haif

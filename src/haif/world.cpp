@@ -209,7 +209,7 @@ void World::step() {
     dampRestingMotion(bodies_, islandOfBody_.data(), islands_, restSpeed, b, e);
     integratePositions(bodies_, b, e, dt, settings_.sleepLinear, settings_.sleepAngular);
   });
-  for (const PinnedBody& pin : pins_) integratePinned(bodies_, pin, dt, settings_.sleepLinear, settings_.sleepAngular);
+  for (const PinnedBody& pin : pins_) integratePinned(bodies_, pin, settings_.gravity, dt, settings_.sleepLinear, settings_.sleepAngular);
   const auto t3 = Clock::now();
   relaxIslands(relax);
   boundSpeeds();

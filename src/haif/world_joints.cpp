@@ -116,6 +116,11 @@ void World::stiffenJointedBodies() {
   if (!settings_.joints.geometricStiffness) return;
   jointStiffness_.assign(bodyCount(), 0.0f);
   for (uint32_t ji : islands_.joints) accumulateJointStiffness(bodies_, joints_[ji], jointStiffness_.data());
+  // A pinned body turns about its point by its true inertia there (integratePinned), which reads
+  // the solve's velocities as angular momentum about the point: the joint's impulse has no moment
+  // about it only if the solve splits it by the true inertia too. Stiffened, a 1 m pendulum of a
+  // 5 cm ball (k = m g L dt², 2.7 × its own inertia) lost 0.02 % of its swing's energy a swing.
+  for (const PinnedBody& pin : pins_) jointStiffness_[pin.body] = 0.0f;
   for (uint32_t i : islands_.bodies) stiffenInertia(bodies_, i, jointStiffness_[i], settings_.dt);
 }
 
