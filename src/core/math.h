@@ -12,6 +12,7 @@
 
 namespace haif {
 
+using Vec2 = Eigen::Vector2f;
 using Vec3 = Eigen::Vector3f;
 using Quat = Eigen::Quaternionf;
 using Mat3 = Eigen::Matrix3f;

@@ -211,7 +211,11 @@ class World {
     std::vector<uint64_t> keys;        // the top-down sort's keys (descendingKey), in island order
     std::vector<uint64_t> scratch;     // the radix sort's second buffer, beside keys
     std::vector<float> carried;        // per body: weight impulse (N s) it carries this step, for cold contacts
-    std::vector<uint16_t> supports;    // per body: contacts holding it up
+    std::vector<Vec2> carriedMoment;   // per body: that impulse's moment about its centre, across the vertical
+    std::vector<uint32_t> supports;    // per body: contacts holding it up
+    std::vector<uint32_t> firstSupport;     // per body: where its supports start in supportContacts
+    std::vector<uint32_t> placed;           // per body: supports listed so far; 0 once its load is divided
+    std::vector<uint32_t> supportContacts;  // the supports of each island's bodies, body by body
     std::vector<uint32_t> tail;        // per island: contacts at the end of its order that cannot touch this step
   } order_;
   std::vector<ContactConstraint> constraints_;

@@ -3,6 +3,7 @@
 #include "haif/world_internal.h"
 
 #include "core/sort_key.h"
+#include "haif/support_balance.h"
 
 namespace haif {
 
@@ -77,16 +78,24 @@ uint32_t World::moveOutOfReachToTail(uint32_t k, uint64_t* keys) {
 // contact is new, and sweeps build the support up only a few layers per step: large_pyramid's upper
 // half fell for tens of steps, then rebounded. Cold contacts between bodies that are nearly at rest
 // relative to each other therefore start from the weight they carry: top-down, each body's own
-// weight plus what rests on it is shared among the contacts holding it up. The sweeps correct the
-// estimate; contacts that approach fast (a landing) start from zero as before.
+// weight plus what rests on it is divided among the points holding it up so that it balances
+// (haif/support_balance.h). The sweeps correct the estimate; contacts that approach fast (a landing)
+// start from zero as before.
 void World::estimateColdImpulses() {
   const float g = settings_.gravity.norm();
   if (g <= 0.0f) return;
   const Vec3 up = -settings_.gravity / g;
+  // Two directions across the vertical, for the moments of the loads.
+  const Vec3 across1 = up.unitOrthogonal(), across2 = up.cross(across1);
   const float dt = settings_.dt;
   const float restSpeed = 2.0f * g * dt;
-  order_.carried.resize(bodyCount());
-  order_.supports.resize(bodyCount());
+  const uint32_t nb = bodyCount();
+  order_.carried.resize(nb);
+  order_.carriedMoment.resize(nb);
+  order_.supports.resize(nb);
+  order_.firstSupport.resize(nb);
+  order_.placed.resize(nb);
+  order_.supportContacts.resize(islands_.contacts.size());
   // A support: a vertical-ish contact in reach; its upper body is the one on the normal's upward side.
   // A contact out of reach holds nothing up: counted as a support, it took a share of the load (in a
   // Jenga tower of 1.5 cm blocks the 2 cm margin reaches the block two layers down; the tower sagged
@@ -111,6 +120,49 @@ void World::estimateColdImpulses() {
     const Contact& c = contacts_[ci];
     return std::fabs(c.manifold.points[0].normal.dot(bodies_.v[c.b] - bodies_.v[c.a])) <= restSpeed;
   };
+  // The body u's load (its weight and what rests on it) divided among the points of its supports,
+  // given to the cold ones and passed on, with where it acts, to the bodies below. A body held up by
+  // more points than the balance takes shares the load equally among its supports, as does one no
+  // division balances (every point would pull: it rests on nothing below its centre).
+  constexpr int kBalancedPoints = 64;
+  auto carry = [&](uint32_t u, const uint32_t* supports, uint32_t count) {
+    const Vec3 centre = bodies_.xf[u].p;
+    const float load = bodies_.mass[u] * g * dt + order_.carried[u];
+    uint32_t total = 0;
+    for (uint32_t s = 0; s < count; ++s) total += uint32_t(contacts_[supports[s]].manifold.count);
+    SupportPoint pts[kBalancedPoints];
+    bool balanced = false;
+    if (total <= uint32_t(kBalancedPoints)) {
+      int n = 0;
+      for (uint32_t s = 0; s < count; ++s) {
+        const Manifold& mf = contacts_[supports[s]].manifold;
+        for (int i = 0; i < mf.count; ++i, ++n) {
+          const Vec3 d = mf.points[i].position - centre;
+          pts[n].x = d.dot(across1);
+          pts[n].z = d.dot(across2);
+        }
+      }
+      const Vec2& moment = order_.carriedMoment[u];
+      balanced = balanceSupportLoad(pts, n, load, moment.x(), moment.y());
+    }
+    int k = 0;
+    for (uint32_t s = 0; s < count; ++s) {
+      Contact& c = contacts_[supports[s]];
+      float slope = 0.0f;
+      upper(supports[s], slope);
+      const uint32_t lower = u == c.a ? c.b : c.a;
+      const bool cold = isCold(supports[s]), carries = bodies_.isAwakeDynamic(lower);
+      const Vec3 below = bodies_.xf[lower].p;
+      for (int i = 0; i < c.manifold.count; ++i, ++k) {
+        const float share = balanced ? pts[k].load : load / float(count * uint32_t(c.manifold.count));
+        if (cold) c.normalImpulse[i] = share / std::fabs(slope);
+        if (!carries) continue;
+        const Vec3 d = c.manifold.points[i].position - below;
+        order_.carried[lower] += share;
+        order_.carriedMoment[lower] += share * Vec2(d.dot(across1), d.dot(across2));
+      }
+    }
+  };
   // Islands share no dynamic body (a static lower body receives nothing): they run concurrently.
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
   parallelFor(m, kIslandGrain, [&](uint32_t begin, uint32_t end) {
@@ -130,23 +182,31 @@ void World::estimateColdImpulses() {
       if (!anyCold) continue;
       for (uint32_t j = 0; j < isl.bodyCount; ++j) {
         order_.carried[bodies[j]] = 0.0f;
+        order_.carriedMoment[bodies[j]] = Vec2::Zero();
         order_.supports[bodies[j]] = 0;
+        order_.placed[bodies[j]] = 0;
       }
       for (uint32_t j = 0; j < isl.contactCount; ++j) {
         const int64_t u = upper(contacts[j], slope);
-        if (u >= 0 && order_.supports[u] < 0xffff) ++order_.supports[u];
+        if (u >= 0) ++order_.supports[u];
       }
-      // Islands' contacts are in top-down order: a body's load is complete before its supports are met.
+      // Each body's supports, listed together within the island's range of the list.
+      uint32_t next = isl.firstContact;
+      for (uint32_t j = 0; j < isl.bodyCount; ++j) {
+        order_.firstSupport[bodies[j]] = next;
+        next += order_.supports[bodies[j]];
+      }
       for (uint32_t j = 0; j < isl.contactCount; ++j) {
-        Contact& c = contacts_[contacts[j]];
         const int64_t u = upper(contacts[j], slope);
-        if (u < 0) continue;
-        const uint32_t lower = uint32_t(u) == c.a ? c.b : c.a;
-        const float share = (bodies_.mass[u] * g * dt + order_.carried[u]) / float(order_.supports[u]);
-        if (bodies_.isAwakeDynamic(lower)) order_.carried[lower] += share;
-        if (!isCold(contacts[j])) continue;
-        const float perPoint = share / (std::fabs(slope) * float(c.manifold.count));
-        for (int i = 0; i < c.manifold.count; ++i) c.normalImpulse[i] = perPoint;
+        if (u >= 0) order_.supportContacts[order_.firstSupport[u] + order_.placed[u]++] = contacts[j];
+      }
+      // Islands' contacts are in top-down order: a body's load is complete when its first support
+      // is met, and all its supports are divided then.
+      for (uint32_t j = 0; j < isl.contactCount; ++j) {
+        const int64_t u = upper(contacts[j], slope);
+        if (u < 0 || order_.placed[u] == 0) continue;
+        order_.placed[u] = 0;  // done
+        carry(uint32_t(u), order_.supportContacts.data() + order_.firstSupport[u], order_.supports[u]);
       }
     }
   });
