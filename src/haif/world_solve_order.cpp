@@ -122,8 +122,7 @@ void World::estimateColdImpulses() {
   };
   // The body u's load (its weight and what rests on it) divided among the points of its supports,
   // given to the cold ones and passed on, with where it acts, to the bodies below. A body held up by
-  // more points than the balance takes shares the load equally among its supports, as does one no
-  // division balances (every point would pull: it rests on nothing below its centre).
+  // more points than the balance takes (a plank on a bed of balls) shares its load equally.
   constexpr int kBalancedPoints = 64;
   auto carry = [&](uint32_t u, const uint32_t* supports, uint32_t count) {
     const Vec3 centre = bodies_.xf[u].p;
