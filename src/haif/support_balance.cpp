@@ -13,6 +13,16 @@ namespace {
 // whose gradient is the imbalance r − Σ λ_k φ_k. Newton on μ (the Hessian is the sum of φ φᵀ over
 // the points that push) with a backtracking line search converges in a few steps; points let go
 // come back when the balance needs them.
+// Adds φ φᵀ of the point (x, z) to h (upper triangle: 00 01 02 11 12 22).
+void addOuter(double h[6], double x, double z) {
+  h[0] += 1.0;
+  h[1] += x;
+  h[2] += z;
+  h[3] += x * x;
+  h[4] += x * z;
+  h[5] += z * z;
+}
+
 struct Dual {
   const SupportPoint* points;
   int count;
@@ -26,7 +36,7 @@ struct Dual {
     for (int k = 0; k < count; ++k) v -= 0.5 * push(k, mu) * push(k, mu);
     return v;
   }
-  // The imbalance, and the sum of φ φᵀ over the points that push (upper triangle: 00 01 02 11 12 22).
+  // The imbalance, and the sum of φ φᵀ over the points that push.
   void imbalance(const double mu[3], double g[3], double h[6]) const {
     g[0] = r[0];
     g[1] = r[1];
@@ -39,19 +49,14 @@ struct Dual {
       g[0] -= l;
       g[1] -= l * x;
       g[2] -= l * z;
-      h[0] += 1.0;
-      h[1] += x;
-      h[2] += z;
-      h[3] += x * x;
-      h[4] += x * z;
-      h[5] += z * z;
+      addOuter(h, x, z);
     }
   }
 };
 
-// Solves the symmetric 3×3 system h d = g (upper triangle as above), a small ridge added so that
+// Solves the symmetric 3×3 system h d = g (upper triangle as in addOuter), a small ridge added so that
 // points in a line (an edge) or one point leave the direction they cannot hold out.
-bool solve3(double h[6], const double g[3], double d[3]) {
+bool solve3(const double h[6], const double g[3], double d[3]) {
   const double ridge = 1e-12 * (h[0] + h[3] + h[5]) + 1e-30;
   const double a = h[0] + ridge, b = h[1], c = h[2], e = h[3] + ridge, f = h[4], i = h[5] + ridge;
   const double c00 = e * i - f * f, c01 = c * f - b * i, c02 = b * f - c * e;
@@ -73,16 +78,7 @@ bool balanceExactly(SupportPoint* points, int count, float load, float mx, float
   // From μ = 0 every point is taken as pushing for the first step (the plain least-squares balance).
   double mu[3] = {0.0, 0.0, 0.0}, g[3], h[6];
   dual.imbalance(mu, g, h);
-  h[0] = count;
-  h[1] = h[2] = h[3] = h[4] = h[5] = 0.0;
-  for (int k = 0; k < count; ++k) {
-    const double x = points[k].x, z = points[k].z;
-    h[1] += x;
-    h[2] += z;
-    h[3] += x * x;
-    h[4] += x * z;
-    h[5] += z * z;
-  }
+  for (int k = 0; k < count; ++k) addOuter(h, points[k].x, points[k].z);
   constexpr int kNewtonSteps = 20;
   for (int step = 0; step < kNewtonSteps; ++step) {
     double d[3];

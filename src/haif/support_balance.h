@@ -9,10 +9,10 @@
 // stood the minute at 4 and at 10. So the load is divided here so that it balances: the vertical
 // force and both moments about horizontal axes.
 //
-// Among the divisions that balance, the least-squares one, λ_k = a + b x_k + c z_k (the load
-// spreads as a plane over the points), then points it would make pull are let go and the rest
-// balanced again. For rigid bodies at rest any non-negative balance of every body is a solution
-// of the contact problem, so a pile whose bodies each balance this way starts solved.
+// Among the divisions that balance with no point pulling, the least-squares one: the load spreads
+// as a plane over the points that push, λ_k = max(0, a + b x_k + c z_k), found by Newton on (a, b, c)
+// (support_balance.cpp). For rigid bodies at rest any non-negative balance of every body is a
+// solution of the contact problem, so a pile whose bodies each balance this way starts solved.
 #pragma once
 
 #include <cstdint>
@@ -29,7 +29,7 @@ struct SupportPoint {
 /// Divides a vertical load (N s) whose moment about the centre is (mx, mz) (N s m; mx = Σ load·x)
 /// among the points, none pulling. Where no such division exists (the load's centre outside what
 /// the points span) the points left carry what balances best, their sum the load. Returns false,
-/// loads untouched, only if every point would pull or there are none.
+/// loads untouched, only if there are no points or no load.
 bool balanceSupportLoad(SupportPoint* points, int count, float load, float mx, float mz);
 
 }  // namespace haif

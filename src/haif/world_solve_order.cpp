@@ -101,10 +101,12 @@ void World::estimateColdImpulses() {
   // Jenga tower of 1.5 cm blocks the 2 cm margin reaches the block two layers down; the tower sagged
   // on its first step and fell at 10 iterations).
   const float reach = reachOfAStep();
+  // The normal's cosine with the vertical: positive when the upper body is b.
+  auto slopeOf = [&](uint32_t ci) { return contacts_[ci].manifold.points[0].normal.dot(up); };
   auto upper = [&](uint32_t ci, float& slope) -> int64_t {
     if (outOfReach(ci, reach)) return -1;
     const Contact& c = contacts_[ci];
-    slope = c.manifold.points[0].normal.dot(up);
+    slope = slopeOf(ci);
     if (std::fabs(slope) < 0.7f) return -1;
     const uint32_t u = slope > 0.0f ? c.b : c.a;
     return bodies_.isAwakeDynamic(u) ? int64_t(u) : -1;
@@ -147,8 +149,7 @@ void World::estimateColdImpulses() {
     int k = 0;
     for (uint32_t s = 0; s < count; ++s) {
       Contact& c = contacts_[supports[s]];
-      float slope = 0.0f;
-      upper(supports[s], slope);
+      const float slope = slopeOf(supports[s]);
       const uint32_t lower = u == c.a ? c.b : c.a;
       const bool cold = isCold(supports[s]), carries = bodies_.isAwakeDynamic(lower);
       const Vec3 below = bodies_.xf[lower].p;
