@@ -26,6 +26,10 @@ struct Contact {
   /// The dynamic body of this contact is pressed from opposite sides by bodies that cannot move
   /// (static or kinematic; haif/pinch.h): no push-out, no impulse carried between steps.
   bool pinched = false;
+  /// The pair was placed at rest with every point apart by less than the contact skin
+  /// (SolverParams::skin), and has stayed so: it counts as touching, so no gap is closed
+  /// (World::narrowPhase sets it, prepareContact reads it).
+  bool hovering = false;
   bool touching() const { return manifold.count > 0; }
 };
 

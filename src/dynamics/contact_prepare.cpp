@@ -227,7 +227,8 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   const Vec3 dv = vB - vA;
   const F4 vn = nx * dv.x() + ny * dv.y() + nz * dv.z() + (rBxn.x * wB.x() + rBxn.y * wB.y() + rBxn.z * wB.z()) -
                 (rAxn.x * wA.x() + rAxn.y * wA.y() + rAxn.z * wA.z());
-  const F4 speculative = depth < 0.0f ? depth * invDt : F4{};  // approach by the gap, no faster
+  // approach by the gap, no faster; a pair placed hovering within the skin counts as touching
+  const F4 speculative = contact.hovering ? F4{} : (depth < 0.0f ? depth * invDt : F4{});
   const F4 excess = simd4::clampNonNegative(depth - p.slop) * (p.beta * invDt);
   const F4 push = excess < p.maxPushVelocity ? excess : F4{} + p.maxPushVelocity;
   // A pinched body's push-outs oppose each other and cannot all be met; their impulses would grow

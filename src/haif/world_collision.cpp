@@ -121,6 +121,17 @@ inline void noteEdge(const Contact& c, ContactEdge& edge, bool againstImmovable,
   edge.pressedByImmovable = againstImmovable && edge.overlapping;
 }
 
+// A pair placed at rest with every point apart by less than the skin hovers: it counts as touching
+// (SolverParams::skin). It keeps hovering while every point stays apart within the skin; once a point
+// touches, or the pair leaves the skin, it is an ordinary contact for as long as it lives.
+inline void noteHovering(Contact& c, bool fresh, bool atRest, float skin) {
+  if (!fresh && !c.hovering) return;
+  bool within = c.manifold.count > 0 && (atRest || !fresh);
+  for (int i = 0; i < c.manifold.count && within; ++i)
+    within = c.manifold.points[i].depth < 0.0f && c.manifold.points[i].depth > -skin;
+  c.hovering = within;
+}
+
 // Sets a touching contact's static friction anchor where its points are now, unless it holds one
 // that has drifted less than kAnchorSlip along the contact; a contact without points lets go.
 constexpr float kAnchorSlip = 0.02f;  // m: more is a slide, not a drift to pull back
@@ -172,6 +183,9 @@ void World::narrowPhase() {
   // damping holds the creep holds none (the pass was 5 % of many_pyramids' step at one sweep), and
   // sets them where its pairs stick once it pulls again.
   const bool anchors = solverParams().frictionAnchors;
+  // Placed at rest: closing no faster than twice what gravity adds in a step (the cold start's rule).
+  const float skin = settings_.contact.skin;
+  const float atRestClosing = 2.0f * settings_.gravity.norm() * settings_.dt * settings_.dt;
   auto anchor = [&](Contact& c, const Transform& xa, const Transform& xb) {
     if (anchors) updateAnchor(c, xa, xb);
     else c.anchored = false;
@@ -212,6 +226,7 @@ void World::narrowPhase() {
       const bool reusable = settings_.reuseManifolds && !rolls(shapes_[c.a]) && !rolls(shapes_[c.b]);
       if (reusable && rel < restingClosing && refreshManifold(c.cache, xa, xb, reuseLimits, c.manifold)) {
         collision_.reusedFlag[ci] = 1;
+        noteHovering(c, false, true, skin);
         anchor(c, xa, xb);
         finish(ci, c, edge, againstImmovable, settings_.contactMargin);
         continue;  // same points and ids: the impulses stay where they are
@@ -255,6 +270,7 @@ void World::narrowPhase() {
         c.twistImpulse = 0.0f;
       }
       if ((old.count > 0) != (c.manifold.count > 0)) collision_.pairFlags[ci] = kPairWakes;
+      noteHovering(c, old.count == 0, rel <= atRestClosing, skin);
       anchor(c, xa, xb);
       finish(ci, c, edge, againstImmovable, reach, old.count == 0);
     }

@@ -40,7 +40,7 @@ std::string formatError(const std::string& path, const std::string& text, size_t
 
 void parseSettings(const JsonNode& node, SimSettings& settings) {
   WorldSettings& s = settings.world;
-  checkKeys(node, {"dt", "gravity", "iterations", "omega", "beta", "slop", "sleeping", "accelerate", "momentum_layers",
+  checkKeys(node, {"dt", "gravity", "iterations", "omega", "beta", "slop", "skin", "sleeping", "accelerate", "momentum_layers",
                    "chain_solve", "wide_solve", "reuse_manifolds", "rest_damping", "frames"});
   s.dt = optPositive(node, "dt", s.dt);
   if (s.dt > 1.0f) fail(node.member("dt"), "must be <= 1 s (got " + formatNumber(s.dt) + "; 60 Hz is 0.0166666667)");
@@ -58,6 +58,7 @@ void parseSettings(const JsonNode& node, SimSettings& settings) {
     if (!(s.contact.beta >= 0.0f && s.contact.beta <= 1.0f)) fail(beta, "must be in [0, 1] (got " + formatNumber(s.contact.beta) + ")");
   }
   s.contact.slop = optNonNegative(node, "slop", s.contact.slop);
+  s.contact.skin = optNonNegative(node, "skin", s.contact.skin);
   if (node.member("sleeping").present()) s.sleeping = readBool(node.member("sleeping"));
   if (node.member("accelerate").present()) s.accelerate = readBool(node.member("accelerate"));
   s.momentumLayers = optNonNegative(node, "momentum_layers", s.momentumLayers);

@@ -102,7 +102,7 @@ TEST(SceneFiles, DefaultsAreApplied) {
 TEST(SceneFiles, KeysAreReadIntoTheDescription) {
   const SceneDesc s = parseOk(R"({
     "name": "custom",
-    "settings": {"dt": 0.01, "gravity": -3, "iterations": 7, "omega": 1.3, "beta": 0.1, "slop": 0.01, "sleeping": true, "frames": 50,
+    "settings": {"dt": 0.01, "gravity": -3, "iterations": 7, "omega": 1.3, "beta": 0.1, "slop": 0.01, "skin": 0.0002, "sleeping": true, "frames": 50,
                  "chain_solve": false, "reuse_manifolds": false, "momentum_layers": 4, "rest_damping": 0.02},
     "materials": {"ice": {"friction": 0.05, "restitution": 0.1, "density": 900}, "default": {"friction": 0.9}},
     "camera": {"eye": [1, 2, 3], "target": [0, 1, 0], "up": [0, 2, 0], "fov_deg": 60},
@@ -127,6 +127,7 @@ TEST(SceneFiles, KeysAreReadIntoTheDescription) {
   EXPECT_FLOAT_EQ(s.settings.world.momentumLayers, 4.0f);
   EXPECT_FLOAT_EQ(s.settings.world.momentumLayers, 4.0f);  // and on to the world
   EXPECT_FLOAT_EQ(s.settings.world.restDamping, 0.02f);
+  EXPECT_FLOAT_EQ(s.settings.world.contact.skin, 0.0002f);
   EXPECT_EQ(s.settings.frames, 50);
   ASSERT_EQ(s.materials.size(), 2u);
   EXPECT_FLOAT_EQ(s.materials[0].friction, 0.9f);  // "default" redefined
