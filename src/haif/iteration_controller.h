@@ -22,11 +22,14 @@ struct ControlContext {
 
 /// What the solve cost, reported back after it.
 struct SolveObservation {
-  double solveMs = 0;               ///< measured wall time of the solve stage
+  /// Measured wall time of the solve stage: rows built, sweeps, relax sweeps, impulses stored (not the
+  /// turn projection or joint breaking after them, which StepStats::solveMs includes: they are in
+  /// integrateMs here, work that does not grow with the iterations).
+  double solveMs = 0;
   uint64_t rowIterations = 0;       ///< Σ rows × iterations over islands
   uint64_t criticalRowIterations = 0;  ///< the same along the critical path
   int iterations = 0;               ///< I that was chosen
-  double integrateMs = 0;           ///< measured time of integration + sleep after the solve
+  double integrateMs = 0;           ///< measured time of integration, sleep, turn projection and joint breaking
   double totalMs = 0;               ///< measured time of the whole step
   /// Thread time (summed over threads) of the solve's once-per-step work and of its sweeps; their
   /// ratio splits solveMs. Both 0: not measured (the model's ratio is used).
