@@ -70,37 +70,66 @@ TEST(Resting, TenBoxStackStands) {
   EXPECT_LT(deepest, 0.02f) << "stack penetration " << deepest << " m";
 }
 
+// A real-size Jenga tower: 18 crossed layers of three 7.5 × 1.5 × 2.5 cm blocks (17 g), `spacing`
+// block widths apart within a layer, `gap` between layers. With `rng`, each block as a hand places it:
+// moved up to ±2 mm across and ±3 mm along, turned up to ±2°, its mass within ±10 %.
+struct JengaTower {
+  std::vector<uint32_t> ids;
+  std::vector<Vec3> start;
+};
+
+JengaTower addJengaTower(World& w, float spacing, float gap = 0.0f, std::mt19937* rng = nullptr) {
+  const Vec3 half(0.0375f, 0.0075f, 0.0125f);
+  auto jitter = [&](float range) { return rng ? std::uniform_real_distribution<float>(-range, range)(*rng) : 0.0f; };
+  JengaTower tower;
+  for (int layer = 0; layer < 18; ++layer) {
+    const bool alongX = layer % 2 == 0;
+    for (int i = -1; i <= 1; ++i) {
+      const float across = spacing * half.z() * float(i) + jitter(0.002f), along = jitter(0.003f);
+      const float y = half.y() * float(2 * layer + 1) + gap * float(layer + 1);
+      const Vec3 p = alongX ? Vec3(along, y, across) : Vec3(across, y, along);
+      const Quat q(Eigen::AngleAxisf(jitter(2.0f) * kPi / 180.0f, Vec3::UnitY()));
+      const float mass = 0.017f * (1.0f + jitter(0.1f));
+      tower.ids.push_back(addBox(w, p, alongX ? half : Vec3(half.z(), half.y(), half.x()), mass, q));
+      tower.start.push_back(p);
+    }
+  }
+  return tower;
+}
+
+void addGroundPlane(World& w) {
+  BodyDef ground;
+  ground.kind = BodyKind::Static;
+  ground.shape = Shape::plane(Vec3::UnitY(), 0.0f);
+  w.addBody(ground);
+}
+
+// The farthest any block of the tower got from where it was placed, over `steps` steps.
+float farthestMove(World& w, const JengaTower& tower, int steps) {
+  float moved = 0.0f;
+  for (int s = 0; s < steps; ++s) {
+    w.step();
+    for (size_t i = 0; i < tower.ids.size(); ++i)
+      moved = std::max(moved, (w.bodies().xf[tower.ids[i]].p - tower.start[i]).norm());
+  }
+  return moved;
+}
+
 // A Jenga tower at real size: 18 layers of three 7.5 x 1.5 x 2.5 cm blocks of 17 g, crossed layer
 // on layer. The 2 cm speculative margin spans a block, so each block also has contacts with the
 // block two layers down (and the plane with the second layer). It fell at 10 iterations within a
 // second: a plane's manifold with a bottom-layer block kept a top corner instead of a bottom one,
 // and the cold start shared each block's weight with the contacts out of reach.
 TEST(Resting, RealSizeJengaTowerStands) {
-  const Vec3 half(0.0375f, 0.0075f, 0.0125f);
   for (const bool plane : {true, false}) {
     World w(restingSettings());
-    if (plane) {
-      BodyDef ground;
-      ground.kind = BodyKind::Static;
-      ground.shape = Shape::plane(Vec3::UnitY(), 0.0f);
-      w.addBody(ground);
-    } else {
-      addGround(w);
-    }
-    std::vector<uint32_t> ids;
-    std::vector<Vec3> start;
-    for (int layer = 0; layer < 18; ++layer) {
-      const bool alongX = layer % 2 == 0;
-      for (int i = -1; i <= 1; ++i) {
-        const float across = 2.0f * half.z() * float(i), y = half.y() * float(2 * layer + 1);
-        const Vec3 p = alongX ? Vec3(0.0f, y, across) : Vec3(across, y, 0.0f);
-        ids.push_back(addBox(w, p, alongX ? half : Vec3(half.z(), half.y(), half.x()), 0.017f));
-        start.push_back(p);
-      }
-    }
+    if (plane) addGroundPlane(w);
+    else addGround(w);
+    const JengaTower tower = addJengaTower(w, 2.0f);
     for (int s = 0; s < 300; ++s) w.step();
     float moved = 0.0f;
-    for (size_t i = 0; i < ids.size(); ++i) moved = std::max(moved, (w.bodies().xf[ids[i]].p - start[i]).norm());
+    for (size_t i = 0; i < tower.ids.size(); ++i)
+      moved = std::max(moved, (w.bodies().xf[tower.ids[i]].p - tower.start[i]).norm());
     EXPECT_LT(moved, 1e-3f) << (plane ? "on a plane" : "on a box");
     EXPECT_LT(w.kineticEnergy(), 1e-6) << (plane ? "on a plane" : "on a box");
   }
@@ -112,38 +141,15 @@ TEST(Resting, RealSizeJengaTowerStands) {
 // ~250 steps at 10 iterations, at once at 4. The cold start now divides each block's load so that it
 // balances (haif/support_balance.h), and the tower starts solved.
 TEST(Resting, JitteredJengaTowerStandsAtFourAndTenIterations) {
-  const Vec3 half(0.0375f, 0.0075f, 0.0125f);
   for (const unsigned seed : {1u, 2u}) {
     for (const int iterations : {4, 10}) {
       WorldSettings ws = restingSettings();
       ws.iterations = iterations;
       World w(ws);
-      BodyDef ground;
-      ground.kind = BodyKind::Static;
-      ground.shape = Shape::plane(Vec3::UnitY(), 0.0f);
-      w.addBody(ground);
+      addGroundPlane(w);
       std::mt19937 rng(seed);
-      auto jitter = [&](float range) { return std::uniform_real_distribution<float>(-range, range)(rng); };
-      std::vector<uint32_t> ids;
-      std::vector<Vec3> start;
-      for (int layer = 0; layer < 18; ++layer) {
-        const bool alongX = layer % 2 == 0;
-        for (int i = -1; i <= 1; ++i) {
-          const float across = 2.04f * half.z() * float(i) + jitter(0.002f), along = jitter(0.003f);
-          const float y = half.y() * float(2 * layer + 1);
-          const Vec3 p = alongX ? Vec3(along, y, across) : Vec3(across, y, along);
-          const Quat q(Eigen::AngleAxisf(jitter(2.0f) * kPi / 180.0f, Vec3::UnitY()));
-          const float mass = 0.017f * (1.0f + jitter(0.1f));
-          ids.push_back(addBox(w, p, alongX ? half : Vec3(half.z(), half.y(), half.x()), mass, q));
-          start.push_back(p);
-        }
-      }
-      float moved = 0.0f;
-      for (int s = 0; s < 600; ++s) {
-        w.step();
-        for (size_t i = 0; i < ids.size(); ++i) moved = std::max(moved, (w.bodies().xf[ids[i]].p - start[i]).norm());
-      }
-      EXPECT_LT(moved, 1e-3f) << "seed " << seed << ", " << iterations << " iterations";
+      const JengaTower tower = addJengaTower(w, 2.04f, 0.0f, &rng);
+      EXPECT_LT(farthestMove(w, tower, 600), 1e-3f) << "seed " << seed << ", " << iterations << " iterations";
       EXPECT_LT(w.kineticEnergy(), 1e-8) << "seed " << seed << ", " << iterations << " iterations";
     }
   }
@@ -155,33 +161,14 @@ TEST(Resting, JitteredJengaTowerStandsAtFourAndTenIterations) {
 // converge: it fell at 4 and 10 iterations with 0.1 and 0.5 mm gaps. Placed at rest within the contact
 // skin, the layers count as touching (SolverParams::skin) and the tower starts solved.
 TEST(Resting, JengaTowerWithGapsBetweenItsLayersStands) {
-  const Vec3 half(0.0375f, 0.0075f, 0.0125f);
   for (const float gap : {0.0001f, 0.0005f}) {
     for (const int iterations : {4, 10}) {
       WorldSettings ws = restingSettings();
       ws.iterations = iterations;
       World w(ws);
-      BodyDef ground;
-      ground.kind = BodyKind::Static;
-      ground.shape = Shape::plane(Vec3::UnitY(), 0.0f);
-      w.addBody(ground);
-      std::vector<uint32_t> ids;
-      std::vector<Vec3> start;
-      for (int layer = 0; layer < 18; ++layer) {
-        const bool alongX = layer % 2 == 0;
-        for (int i = -1; i <= 1; ++i) {
-          const float across = 2.04f * half.z() * float(i), y = (2.0f * half.y() + gap) * float(layer) + half.y() + gap;
-          const Vec3 p = alongX ? Vec3(0.0f, y, across) : Vec3(across, y, 0.0f);
-          ids.push_back(addBox(w, p, alongX ? half : Vec3(half.z(), half.y(), half.x()), 0.017f));
-          start.push_back(p);
-        }
-      }
-      float moved = 0.0f;
-      for (int s = 0; s < 600; ++s) {
-        w.step();
-        for (size_t i = 0; i < ids.size(); ++i) moved = std::max(moved, (w.bodies().xf[ids[i]].p - start[i]).norm());
-      }
-      EXPECT_LT(moved, 1e-3f) << gap * 1000.0f << " mm gaps, " << iterations << " iterations";
+      addGroundPlane(w);
+      const JengaTower tower = addJengaTower(w, 2.04f, gap);
+      EXPECT_LT(farthestMove(w, tower, 600), 1e-3f) << gap * 1000.0f << " mm gaps, " << iterations << " iterations";
       EXPECT_LT(w.kineticEnergy(), 1e-8) << gap * 1000.0f << " mm gaps, " << iterations << " iterations";
     }
   }
