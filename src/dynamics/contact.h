@@ -30,6 +30,9 @@ struct Contact {
   /// (SolverParams::skin), and has stayed so: it counts as touching, so no gap is closed
   /// (World::narrowPhase sets it, prepareContact reads it).
   bool hovering = false;
+  /// Steps its island is still solved exactly after a landing in it (World::solveIslands): the
+  /// landing's impulses are no warm start for sweeps at a mass ratio until the island has settled.
+  uint8_t exactSteps = 0;
   bool touching() const { return manifold.count > 0; }
 };
 

@@ -20,6 +20,9 @@ constexpr float kTouchingGap = 1e-3f;
 constexpr float kRejoinGap = 1e-4f;
 /// Impulses this far below 0, relative to the link's mean, count as 0 (float noise of the solve).
 constexpr float kPullTolerance = 1e-4f;
+/// A dense system's pivots below this fraction of its largest diagonal are its null space: impulses
+/// that move no body (DenseSystem leaves ~1e-15 there; a 500 kg block on 1 kg cubes has ~1e-8).
+constexpr double kDenseNullRatio = 1e-11;
 
 // The virtual rows of a link over its points in link.points, and their diagonal block.
 void buildRows(const ContactConstraint& c, ChainLink& link) {
@@ -241,8 +244,15 @@ bool prepareChain(const Contact* contacts, const ContactConstraint* cs, uint32_t
   return true;
 }
 
-SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainLink* links, uint32_t n, float omega,
-                                bool useBias) {
+namespace {
+
+// One sweep of an exact normal solve (see the header): friction rows contact by contact, then the
+// active set's rounds, each solving the normal rows of the active links together through `system`:
+// system.factor(rowsChanged) factors them (false: singular), system.substitute() sets each active
+// link's mu from its rhs, system.rowsRebuilt(j) is told when link j's rows changed.
+template <class System>
+SweepResult solveExactIteration(BodyStore& bodies, ContactConstraint* cs, ChainLink* links, uint32_t n, float omega,
+                                bool useBias, System& system) {
   auto load = [&](const ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb) {
     va = bodies.v[c.a];
     wa = bodies.w[c.a];
@@ -274,6 +284,12 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
     }
     if (any) commit(c, applied);
   };
+  auto drivenIn = [&](const ContactConstraint& c) {
+    const Vec3 &va = bodies.v[c.a], &wa = bodies.w[c.a], &vb = bodies.v[c.b], &wb = bodies.w[c.b];
+    for (int i = 0; i < c.count; ++i)
+      if (rowGap(c, i, va, wa, vb, wb, useBias) < -kRejoinGap) return true;
+    return false;
+  };
   auto touches = [&](const ContactConstraint& c) {
     const Vec3 &va = bodies.v[c.a], &wa = bodies.w[c.a], &vb = bodies.v[c.b], &wb = bodies.w[c.b];
     for (int i = 0; i < c.count; ++i)
@@ -281,14 +297,20 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
     return false;
   };
 
-  // A link that let go of lifted points in the last sweep starts again from all of them.
+  // A chain link that let go of lifted points in the last sweep starts again from all of them (the
+  // chain's factors cost little to make again). A small island keeps them out until the solve drives
+  // them in (the rejoin below), and a link it let go of rejoins only so, not when it merely touches:
+  // an unloaded contact at rest that the least-squares solve gives a pull of float noise was let go
+  // and taken back round after round, and 7 of 10 sweeps of tower_collapse's small islands ended
+  // unsettled (and factored their system five times).
   bool rowsChanged = false;
-  for (uint32_t j = 0; j < n; ++j) {
+  for (uint32_t j = 0; j < n; ++j) links[j].letGo = false;
+  for (uint32_t j = 0; j < n && !System::kKeepsWhatItLetGo; ++j) {
     const unsigned all = (1u << cs[j].count) - 1u;
     if (links[j].points == all) continue;
     links[j].points = all;
     buildRows(cs[j], links[j]);
-    recouple(cs, links, n, j);
+    system.rowsRebuilt(j);
     rowsChanged = true;
   }
   for (uint32_t j = 0; j < n; ++j) {
@@ -312,9 +334,9 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
   bool solved = false;
   for (int round = 0; round < kChainRounds && !solved; ++round) {
     computeRhs(bodies, cs, links, n, useBias);
-    if (!factorChain(links, n, rowsChanged)) break;
+    if (!system.factor(rowsChanged)) break;
     rowsChanged = false;
-    substituteChain(links, n);
+    system.substitute();
     bool pulling = false;
     for (uint32_t j = 0; j < n; ++j) {
       ChainLink& link = links[j];
@@ -342,7 +364,7 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
         commit(c, applied);
         if (link.points != 0) {
           buildRows(c, link);
-          recouple(cs, links, n, j);
+          system.rowsRebuilt(j);
           rowsChanged = true;
           continue;
         }
@@ -350,6 +372,7 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
         // The whole contact wants to separate: let it go (λ = 0, applied now, so the next round
         // solves the others against it). If that was wrong, it touches again and rejoins below.
         release(c);
+        link.letGo = true;
       }
       link.active = false;
     }
@@ -370,7 +393,7 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
       ChainLink& link = links[j];
       const ContactConstraint& c = cs[j];
       if (!link.active) {
-        if (touches(c)) {
+        if (System::kKeepsWhatItLetGo && link.letGo ? drivenIn(c) : touches(c)) {
           link.active = true;
           solved = false;
         }
@@ -385,7 +408,7 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
           link.points |= 1u << i;
       if (link.points == before) continue;
       buildRows(c, link);
-      recouple(cs, links, n, j);
+      system.rowsRebuilt(j);
       rowsChanged = true;
       solved = false;
     }
@@ -413,6 +436,204 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
     change += squaredChange(c);
   }
   return {residual, change};
+}
+
+// The chain's system: block tridiagonal, factored down the chain.
+struct ChainSystem {
+  static constexpr bool kKeepsWhatItLetGo = false;
+  const ContactConstraint* cs;
+  ChainLink* links;
+  uint32_t n;
+  bool factor(bool rowsChanged) { return factorChain(links, n, rowsChanged); }
+  void substitute() { substituteChain(links, n); }
+  void rowsRebuilt(uint32_t j) { recouple(cs, links, n, j); }
+};
+
+// R_j M⁻¹ R_lᵀ through every dynamic body links j and l share (j == l: its diagonal block), added
+// into `out`. In double from the body's own inverse inertia, not the rows' float I⁻¹ (r × n): the
+// system is then positive semidefinite to double precision, and its null space (impulses that move
+// nothing) shows as eigenvalues ~1e-15 of the largest instead of float noise at ~1e-10.
+void addCoupling(const BodyStore& bodies, const ContactConstraint& cj, const ContactConstraint& cl, const ChainLink& j,
+                 const ChainLink& l, double out[3][3]) {
+  for (int sj = 0; sj < 2; ++sj) {
+    if (!(sj == 0 ? cj.dynA : cj.dynB)) continue;
+    const uint32_t body = sj == 0 ? cj.a : cj.b;
+    for (int sl = 0; sl < 2; ++sl) {
+      if (!(sl == 0 ? cl.dynA : cl.dynB) || (sl == 0 ? cl.a : cl.b) != body) continue;
+      const double sign = (sj == 1 ? 1.0 : -1.0) * (sl == 1 ? 1.0 : -1.0);
+      const double invMass = bodies.invMass[body];
+      const double normals = cj.normal.row(0).cast<double>().dot(cl.normal.row(0).cast<double>());
+      const Eigen::Matrix3d invInertia = bodies.invInertiaWorld[body].cast<double>();
+      for (int q = 0; q < l.rank; ++q) {
+        const Eigen::Vector3d turn = invInertia * (sl == 1 ? l.angB[q] : l.angA[q]).cast<double>();
+        for (int r = 0; r < j.rank; ++r) {
+          const Eigen::Vector3d ang = (sj == 1 ? j.angB[r] : j.angA[r]).cast<double>();
+          out[r][q] += sign * (double(j.lin[r]) * double(l.lin[q]) * invMass * normals + ang.dot(turn));
+        }
+      }
+    }
+  }
+}
+
+// A small island's system: every pair of links sharing a body couples, so it is dense. It is solved
+// in the least-squares sense: a table on four legs has more normal rows than its bodies have ways
+// to move, and rows that ask for what no motion gives (legs pressed to slightly different depths)
+// would otherwise fight with impulses that move nothing. A pivoted LDLᵀ (largest diagonal first)
+// stops where what is left of the system is null: the rows eliminated by then are independent and
+// solved exactly, the rest follow from them (they ask for what the others' motion gives, or what no
+// motion gives, and are not fought for). Of all the impulses that solve it, the smallest is taken,
+// projecting out the null space: that shares a load evenly among supports that could each carry it.
+struct DenseSystem {
+  static constexpr bool kKeepsWhatItLetGo = true;
+  const BodyStore& bodies;
+  const ContactConstraint* cs;
+  ChainLink* links;
+  uint32_t n;
+  DenseNormalSystem& d;
+
+  bool factor(bool rowsChanged) {
+    bool same = !rowsChanged;
+    for (uint32_t j = 0; j < n && same; ++j) same = links[j].active == links[j].factoredActive;
+    if (same) return true;
+    int rows = 0;
+    for (uint32_t j = 0; j < n; ++j) {
+      links[j].factoredActive = links[j].active;
+      d.rowOf[j] = links[j].active ? rows : -1;
+      if (!links[j].active) continue;
+      for (int q = 0; q < links[j].rank; ++q, ++rows) {
+        d.linkOf[rows] = uint8_t(j);
+        d.partOf[rows] = uint8_t(q);
+      }
+    }
+    d.rows = d.rank = rows;
+    if (rows == 0) return true;
+    auto& S = d.factor;
+    for (uint32_t j = 0; j < n; ++j) {
+      if (d.rowOf[j] < 0) continue;
+      for (uint32_t l = j; l < n; ++l) {
+        if (d.rowOf[l] < 0) continue;
+        double block[3][3] = {};
+        addCoupling(bodies, cs[j], cs[l], links[j], links[l], block);
+        for (int r = 0; r < links[j].rank; ++r)
+          for (int q = 0; q < links[l].rank; ++q)
+            S[d.rowOf[j] + r][d.rowOf[l] + q] = S[d.rowOf[l] + q][d.rowOf[j] + r] = block[r][q];
+      }
+    }
+    double largest = 0.0;
+    for (int i = 0; i < rows; ++i) {
+      d.order[i] = i;
+      largest = std::max(largest, S[i][i]);
+    }
+    if (!(largest > 0.0)) return false;
+    // Outer-product LDLᵀ on the full symmetric matrix, rows and columns swapped to the pivot.
+    for (int k = 0; k < rows; ++k) {
+      int p = k;
+      for (int i = k + 1; i < rows; ++i)
+        if (S[i][i] > S[p][p]) p = i;
+      if (!(S[p][p] > kDenseNullRatio * largest)) {
+        d.rank = k;
+        break;
+      }
+      if (p != k) {
+        std::swap(d.order[k], d.order[p]);
+        for (int i = 0; i < rows; ++i) std::swap(S[k][i], S[p][i]);
+        for (int i = 0; i < rows; ++i) std::swap(S[i][k], S[i][p]);
+      }
+      const double pivot = S[k][k];
+      for (int i = k + 1; i < rows; ++i) S[i][k] /= pivot;
+      for (int i = k + 1; i < rows; ++i) {
+        const double li = S[i][k] * pivot;
+        for (int j = k + 1; j <= i; ++j) S[i][j] -= li * S[j][k];
+        for (int j = k + 1; j < i; ++j) S[j][i] = S[i][j];
+      }
+    }
+    const int r = d.rank, free = rows - r;
+    if (free == 0) return true;
+    // Null space [T; I] with L11ᵀ T = −L21ᵀ, and the Cholesky factor of its Gram matrix I + TᵀT.
+    auto& T = d.nullBasis;
+    for (int f = 0; f < free; ++f)
+      for (int i = r; i-- > 0;) {
+        double t = -S[r + f][i];
+        for (int m = i + 1; m < r; ++m) t -= S[m][i] * T[m][f];
+        T[i][f] = t;
+      }
+    auto& G = d.nullGram;
+    for (int a = 0; a < free; ++a)
+      for (int b = 0; b <= a; ++b) {
+        double g = a == b ? 1.0 : 0.0;
+        for (int i = 0; i < r; ++i) g += T[i][a] * T[i][b];
+        for (int m = 0; m < b; ++m) g -= G[a][m] * G[b][m];
+        G[a][b] = a == b ? std::sqrt(g) : g / G[b][b];
+      }
+    return true;
+  }
+
+  void substitute() {
+    const int rows = d.rows, r = d.rank, free = rows - r;
+    if (rows == 0) return;
+    const auto& S = d.factor;
+    double* x = d.x;
+    // The independent rows: L11 D L11ᵀ x1 = b1, in pivot order.
+    for (int k = 0; k < r; ++k) {
+      const int row = d.order[k];
+      double v = links[d.linkOf[row]].rhs[d.partOf[row]];
+      for (int m = 0; m < k; ++m) v -= S[k][m] * x[m];
+      x[k] = v;
+    }
+    for (int k = 0; k < r; ++k) x[k] /= S[k][k];
+    for (int k = r; k-- > 0;)
+      for (int m = k + 1; m < r; ++m) x[k] -= S[m][k] * x[m];
+    for (int f = 0; f < free; ++f) x[r + f] = 0.0;
+    if (free > 0) {
+      // Least norm: x − N (NᵀN)⁻¹ Nᵀ x with N = [T; I] and x's free part 0.
+      const auto& T = d.nullBasis;
+      const auto& G = d.nullGram;
+      double* c = d.c;
+      for (int f = 0; f < free; ++f) {
+        double v = 0.0;
+        for (int i = 0; i < r; ++i) v += T[i][f] * x[i];
+        for (int m = 0; m < f; ++m) v -= G[f][m] * c[m];
+        c[f] = v / G[f][f];
+      }
+      for (int f = free; f-- > 0;) {
+        for (int m = f + 1; m < free; ++m) c[f] -= G[m][f] * c[m];
+        c[f] /= G[f][f];
+      }
+      for (int i = 0; i < r; ++i)
+        for (int f = 0; f < free; ++f) x[i] -= T[i][f] * c[f];
+      for (int f = 0; f < free; ++f) x[r + f] = -c[f];
+    }
+    for (uint32_t j = 0; j < n; ++j) {
+      if (d.rowOf[j] < 0) continue;
+      for (int q = 0; q < 3; ++q) links[j].mu[q] = 0.0f;
+    }
+    for (int k = 0; k < rows; ++k) links[d.linkOf[d.order[k]]].mu[d.partOf[d.order[k]]] = float(x[k]);
+  }
+  void rowsRebuilt(uint32_t) {}
+};
+
+}  // namespace
+
+SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainLink* links, uint32_t n, float omega,
+                                bool useBias) {
+  ChainSystem system{cs, links, n};
+  return solveExactIteration(bodies, cs, links, n, omega, useBias, system);
+}
+
+bool prepareSmallIsland(const Contact* contacts, const ContactConstraint* cs, uint32_t n, ChainLink* links) {
+  if (n < 2 || n > uint32_t(DenseNormalSystem::kMaxLinks)) return false;
+  int rows = 0;
+  for (uint32_t j = 0; j < n; ++j) {
+    if (contacts[cs[j].contact].pinched || !prepareLink(contacts[cs[j].contact], cs[j], links[j])) return false;
+    rows += links[j].rank;
+  }
+  return rows <= DenseNormalSystem::kMaxRows;
+}
+
+SweepResult solveSmallIslandIteration(BodyStore& bodies, ContactConstraint* cs, ChainLink* links, uint32_t n,
+                                      float omega, bool useBias, DenseNormalSystem& system) {
+  DenseSystem dense{bodies, cs, links, n, system};
+  return solveExactIteration(bodies, cs, links, n, omega, useBias, dense);
 }
 
 }  // namespace haif

@@ -43,6 +43,7 @@ struct ChainLink {
   // Per sweep.
   bool active;                              ///< takes part in the solve
   bool factoredActive;                      ///< `active` when the factors below were made
+  bool letGo;                               ///< let go of (pulling) in this sweep
   double pivotInverse[3][3];                ///< inverse of the eliminated diagonal block
   double lower[3][3];                       ///< nextᵀ of the previous link times its pivotInverse
   // The factors in float for the substitutions, which run every round of every sweep; they are
@@ -58,6 +59,32 @@ struct ChainLink {
 /// scratch of the world's body count. False: not a chain, sweep as usual.
 bool prepareChain(const Contact* contacts, const ContactConstraint* cs, uint32_t n,
                   uint32_t* mark, ChainLink* links);
+
+/// The factor of a small island's normal rows (prepareSmallIsland): dense, at most kMaxRows rows,
+/// in fixed-size storage so that factoring allocates nothing. A pivoted LDLᵀ that stops at the
+/// system's rank, and its null space, for the least-squares solution of smallest norm (contact_chain.cpp).
+struct DenseNormalSystem {
+  static constexpr int kMaxLinks = 16, kMaxRows = 48;
+  int rows = 0;                           ///< of the active links
+  int rank = 0;                           ///< independent rows: the first `rank` in pivot order
+  int rowOf[kMaxLinks];                   ///< first row of each active link, -1 for the others
+  int order[kMaxRows];                    ///< pivot order: order[k] is the row eliminated k-th
+  uint8_t linkOf[kMaxRows], partOf[kMaxRows];  ///< the link and virtual row of each row
+  double factor[kMaxRows][kMaxRows];      ///< in pivot order: L below the diagonal, D on it
+  double nullBasis[kMaxRows][kMaxRows];   ///< T (rank × (rows − rank)): the null space is [T; I]
+  double nullGram[kMaxRows][kMaxRows];    ///< Cholesky factor of I + TᵀT
+  double x[kMaxRows], c[kMaxRows];        ///< substitution scratch
+};
+
+/// Builds the links of an island's contacts `cs[0, n)` for the dense solve: at most
+/// DenseNormalSystem::kMaxLinks contacts of one normal each, no pinched body, at most kMaxRows
+/// virtual rows. False: sweep as usual.
+bool prepareSmallIsland(const Contact* contacts, const ContactConstraint* cs, uint32_t n, ChainLink* links);
+
+/// One sweep of a small island: as solveChainIteration, with the normal rows of all its links
+/// solved together through `system` (any links sharing a body couple).
+SweepResult solveSmallIslandIteration(BodyStore& bodies, ContactConstraint* cs, ChainLink* links, uint32_t n,
+                                      float omega, bool useBias, DenseNormalSystem& system);
 
 /// One sweep of a chain: friction rows contact by contact, then the normal rows of the whole chain
 /// solved exactly (see above). Same result fields as solveIteration.

@@ -154,6 +154,10 @@ class World {
   void shareSpareIterations(int iterations);
   void relaxIslands(int relaxIterations);
   bool onlyPinned(uint32_t island) const;  // every body of the island is pinned (BodyStore::pinned)
+  /// Island k is to be solved as a small island (prepareSmallIsland) this step: few contacts, no
+  /// joints, not split, two bodies in contact whose masses differ by exactMassRatio or more, and a
+  /// landing in it lately (counted down in its contacts' Contact::exactSteps).
+  bool wantsSmallIslandSolve(uint32_t k);
   void summariseIterations();
   SolverParams solverParams() const;
   /// Runs over the islands in parallel, batched (batchStart_), in two phases per batch: first(k) for
@@ -220,7 +224,11 @@ class World {
   } order_;
   std::vector<ContactConstraint> constraints_;
   std::vector<ChainLink> chainLinks_;  // parallel to constraints_; used for islands that form a chain
-  std::vector<uint8_t> isChain_;       // per island: its contacts were prepared as a chain this step
+  std::vector<uint8_t> isChain_;       // per island: its contacts were prepared as a chain (1) or small island (2)
+  // Small islands holding a mass ratio (exactMassRatio), solved with their normal rows together:
+  // per island the system it uses, or -1; the systems grow to the most such islands seen.
+  std::vector<int32_t> denseOf_;
+  std::vector<DenseNormalSystem> denseSystems_;
   std::vector<uint32_t> chainMark_;    // per body: scratch of prepareChain
   // Per island: what its sweeps did, and the spare iterations shared out (world_solve.cpp).
   struct SpareIterationBuffers {

@@ -33,6 +33,10 @@ struct WorldSettings {
   /// same result as the plain order to the bit (World::batchLanes); off only to compare the two.
   bool interleaveSolveOrder = true;
   bool chainSolve = true;           ///< solve the normal rows of chain-shaped islands (stacks) exactly
+  /// Small islands (up to 16 contacts) in which a body rests on or against one this many times
+  /// lighter or heavier have their normal rows solved together each sweep (contact_chain.h): sweeps
+  /// pass a heavy body's landing through a light one a fraction per sweep. 0: off.
+  float exactMassRatio = 4.0f;
   bool reuseManifolds = true;       ///< keep a pair's manifold while its bodies keep still (manifold_cache.h)
   JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)
   SpeedBoundSettings speedBound;    ///< the bound on every body's speed (haif/speed_bound.h)

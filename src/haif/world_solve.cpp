@@ -12,6 +12,11 @@ namespace {
 // Largest velocity correction (m/s) below which a sweep takes no momentum step: the island has
 // converged to float noise, and a conjugate step there only costs time.
 constexpr float kMomentumFloor = 1e-5f;
+/// Without gravity, nothing rests: a small island with a mass ratio is solved exactly whenever a row
+/// closes faster than this (m/s).
+constexpr float kLandingSpeedWithoutGravity = 0.01f;
+/// Steps a small island with a mass ratio is still solved exactly after its last landing.
+constexpr uint8_t kExactStepsAfterLanding = 30;
 
 }  // namespace
 
@@ -56,7 +61,10 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias, bool restartDirection, 
   if (isChain_[k]) {
     // Contacts out of reach follow the chain (moveOutOfReachToTail), swept as usual.
     const uint32_t chained = isl.contactCount - tailOf(k);
-    r = solveChainIteration(bodies_, cs, chainLinks_.data() + isl.firstContact, chained, omega, useBias);
+    ChainLink* links = chainLinks_.data() + isl.firstContact;
+    r = isChain_[k] == 1 ? solveChainIteration(bodies_, cs, links, chained, omega, useBias)
+                         : solveSmallIslandIteration(bodies_, cs, links, chained, omega, useBias,
+                                                     denseSystems_[denseOf_[k]]);
     if (chained < isl.contactCount)
       r.merge(solveIteration(bodies_, cs + chained, isl.contactCount - chained, omega, useBias, restartDirection,
                              measureChange));
@@ -150,6 +158,9 @@ void World::solveIslands(int iterations) {
     isChain_[k] = settings_.chainSolve && layoutOf_[k] < 0 && isl.jointCount == 0 &&
                   prepareChain(contacts_.data(), cs, isl.contactCount - tailOf(k), chainMark_.data(),
                                chainLinks_.data() + isl.firstContact);
+    if (!isChain_[k] && denseOf_[k] >= 0 &&
+        prepareSmallIsland(contacts_.data(), cs, isl.contactCount - tailOf(k), chainLinks_.data() + isl.firstContact))
+      isChain_[k] = 2;
     const VelocityView velocities = velocitiesOf(k);
     if (sp.warmStart) forEachStrip(k, [&](uint32_t b, uint32_t e) {
       warmStart(velocities, cs + b, e - b);
@@ -258,6 +269,46 @@ void World::shareSpareIterations(int iterations) {
   });
 }
 
+// A small island with a mass ratio is solved together from a landing in it (a point closing faster
+// than a body at rest does: 2 g dt, the cold start's rule) until it has rested for
+// kExactStepsAfterLanding: the landing's impulses are no warm start for sweeps, which at a mass ratio
+// pass a change through a light body a fraction per sweep. At rest the warm start holds the island,
+// and sweeps cost less than factoring its system every step (tower_collapse's debris, solved so every
+// step: 0.25 → 0.41 ms a step).
+bool World::wantsSmallIslandSolve(uint32_t k) {
+  const Island& isl = islands_.islands[k];
+  if (!(settings_.exactMassRatio > 0.0f) || isl.jointCount > 0 || layoutOf_[k] >= 0 || isl.contactCount < 2 ||
+      isl.contactCount > uint32_t(DenseNormalSystem::kMaxLinks))
+    return false;
+  const uint32_t* ids = islands_.contacts.data() + isl.firstContact;
+  bool ratio = false;
+  for (uint32_t j = 0; j < isl.contactCount && !ratio; ++j) {
+    const ContactEdge& c = contactEdges_[ids[j]];
+    const float ma = bodies_.mass[c.a], mb = bodies_.mass[c.b];
+    ratio = ma > 0.0f && mb > 0.0f && std::max(ma, mb) >= settings_.exactMassRatio * std::min(ma, mb);
+  }
+  if (!ratio) return false;
+  const float g = settings_.gravity.norm();
+  const float landingSpeed = g > 0.0f ? 2.0f * g * settings_.dt : kLandingSpeedWithoutGravity;
+  bool landing = false, settling = false;
+  for (uint32_t j = 0; j < isl.contactCount && !landing; ++j) {
+    const Contact& c = contacts_[ids[j]];
+    const Vec3 &pa = bodies_.xf[c.a].p, &pb = bodies_.xf[c.b].p;
+    for (int i = 0; i < c.manifold.count; ++i) {
+      const ContactPoint& p = c.manifold.points[i];
+      const Vec3 closing = bodies_.v[c.b] + bodies_.w[c.b].cross(p.position - pb) - bodies_.v[c.a] -
+                           bodies_.w[c.a].cross(p.position - pa);
+      landing |= p.normal.dot(closing) < -landingSpeed;
+    }
+  }
+  for (uint32_t j = 0; j < isl.contactCount; ++j) {
+    uint8_t& left = contacts_[ids[j]].exactSteps;
+    settling |= left > 0;
+    left = landing ? kExactStepsAfterLanding : uint8_t(left > 0 ? left - 1 : 0);
+  }
+  return landing || settling;
+}
+
 bool World::onlyPinned(uint32_t k) const {
   const Island& isl = islands_.islands[k];
   for (uint32_t j = 0; j < isl.bodyCount; ++j)
@@ -315,6 +366,11 @@ void World::solve(int iterations) {
   chainLinks_.resize(constraints_.size());
   chainMark_.resize(bodyCount());
   isChain_.assign(m, 0);
+  denseOf_.assign(m, -1);
+  int32_t dense = 0;
+  for (uint32_t k = 0; k < m; ++k)
+    if (wantsSmallIslandSolve(k)) denseOf_[k] = dense++;
+  if (denseSystems_.size() < size_t(dense)) denseSystems_.resize(dense);  // grows, then reused
   jointConstraints_.resize(islands_.joints.size());
   if (jointTrees_.size() < m) jointTrees_.resize(m);  // grows to the most islands seen, then reused
   if (!joints_.empty()) stiffenJointedBodies();

@@ -326,6 +326,7 @@ bool validateScene(const SceneDesc& scene, SceneIssue& issue) {
   if (!(s.contact.omega >= 1.0f && s.contact.omega < 2.0f)) return c.bad("settings.omega", "must be in [1, 2) (got " + formatNumber(s.contact.omega) + ")");
   if (!c.nonNegative("settings.beta", s.contact.beta) || !c.nonNegative("settings.slop", s.contact.slop) ||
       !c.nonNegative("settings.skin", s.contact.skin) ||
+      !c.nonNegative("settings.exact_mass_ratio", s.exactMassRatio) ||
       !c.nonNegative("settings.momentum_layers", s.momentumLayers))
     return false;
   if (s.contact.beta > 1.0f) return c.bad("settings.beta", "must be in [0, 1] (got " + formatNumber(s.contact.beta) + ")");
