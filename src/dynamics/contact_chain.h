@@ -64,7 +64,7 @@ bool prepareChain(const Contact* contacts, const ContactConstraint* cs, uint32_t
 /// in fixed-size storage so that factoring allocates nothing. A pivoted LDLᵀ that stops at the
 /// system's rank, and its null space, for the least-squares solution of smallest norm (contact_chain.cpp).
 struct DenseNormalSystem {
-  static constexpr int kMaxLinks = 16, kMaxRows = 48;
+  static constexpr int kMaxLinks = 32, kMaxRows = 72;
   int rows = 0;                           ///< of the active links
   int rank = 0;                           ///< independent rows: the first `rank` in pivot order
   int rowOf[kMaxLinks];                   ///< first row of each active link, -1 for the others

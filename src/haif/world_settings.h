@@ -33,7 +33,7 @@ struct WorldSettings {
   /// same result as the plain order to the bit (World::batchLanes); off only to compare the two.
   bool interleaveSolveOrder = true;
   bool chainSolve = true;           ///< solve the normal rows of chain-shaped islands (stacks) exactly
-  /// Small islands (up to 16 contacts) in which a body rests on or against one this many times
+  /// Small islands (up to 32 contacts) in which a body rests on or against one this many times
   /// lighter or heavier have their normal rows solved together each sweep (contact_chain.h): sweeps
   /// pass a heavy body's landing through a light one a fraction per sweep. 0: off.
   float exactMassRatio = 4.0f;

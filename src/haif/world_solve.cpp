@@ -290,6 +290,7 @@ bool World::wantsSmallIslandSolve(uint32_t k) {
   if (!ratio) return false;
   const float g = settings_.gravity.norm();
   const float landingSpeed = g > 0.0f ? 2.0f * g * settings_.dt : kLandingSpeedWithoutGravity;
+  const float slop = settings_.contact.slop;
   bool landing = false, settling = false;
   for (uint32_t j = 0; j < isl.contactCount && !landing; ++j) {
     const Contact& c = contacts_[ids[j]];
@@ -298,7 +299,7 @@ bool World::wantsSmallIslandSolve(uint32_t k) {
       const ContactPoint& p = c.manifold.points[i];
       const Vec3 closing = bodies_.v[c.b] + bodies_.w[c.b].cross(p.position - pb) - bodies_.v[c.a] -
                            bodies_.w[c.a].cross(p.position - pa);
-      landing |= p.normal.dot(closing) < -landingSpeed;
+      landing |= p.depth <= slop && p.normal.dot(closing) < -landingSpeed;
     }
   }
   for (uint32_t j = 0; j < isl.contactCount; ++j) {
