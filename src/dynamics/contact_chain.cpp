@@ -475,6 +475,13 @@ void addCoupling(const BodyStore& bodies, const ContactConstraint& cj, const Con
   }
 }
 
+// A row-major square matrix in flat storage: m[i][j].
+struct RowMajor {
+  double* data;
+  int stride;
+  double* operator[](int i) const { return data + size_t(i) * size_t(stride); }
+};
+
 // A small island's system: every pair of links sharing a body couples, so it is dense. It is solved
 // in the least-squares sense: a table on four legs has more normal rows than its bodies have ways
 // to move, and rows that ask for what no motion gives (legs pressed to slightly different depths)
@@ -507,7 +514,7 @@ struct DenseSystem {
     }
     d.rows = d.rank = rows;
     if (rows == 0) return true;
-    auto& S = d.factor;
+    const RowMajor S{d.factor, d.stride};
     for (uint32_t j = 0; j < n; ++j) {
       if (d.rowOf[j] < 0) continue;
       for (uint32_t l = j; l < n; ++l) {
@@ -550,14 +557,14 @@ struct DenseSystem {
     const int r = d.rank, free = rows - r;
     if (free == 0) return true;
     // Null space [T; I] with L11ᵀ T = −L21ᵀ, and the Cholesky factor of its Gram matrix I + TᵀT.
-    auto& T = d.nullBasis;
+    const RowMajor T{d.nullBasis, d.stride};
     for (int f = 0; f < free; ++f)
       for (int i = r; i-- > 0;) {
         double t = -S[r + f][i];
         for (int m = i + 1; m < r; ++m) t -= S[m][i] * T[m][f];
         T[i][f] = t;
       }
-    auto& G = d.nullGram;
+    const RowMajor G{d.nullGram, d.stride};
     for (int a = 0; a < free; ++a)
       for (int b = 0; b <= a; ++b) {
         double g = a == b ? 1.0 : 0.0;
@@ -571,7 +578,7 @@ struct DenseSystem {
   void substitute() {
     const int rows = d.rows, r = d.rank, free = rows - r;
     if (rows == 0) return;
-    const auto& S = d.factor;
+    const RowMajor S{d.factor, d.stride};
     double* x = d.x;
     // The independent rows: L11 D L11ᵀ x1 = b1, in pivot order.
     for (int k = 0; k < r; ++k) {
@@ -586,8 +593,7 @@ struct DenseSystem {
     for (int f = 0; f < free; ++f) x[r + f] = 0.0;
     if (free > 0) {
       // Least norm: x − N (NᵀN)⁻¹ Nᵀ x with N = [T; I] and x's free part 0.
-      const auto& T = d.nullBasis;
-      const auto& G = d.nullGram;
+      const RowMajor T{d.nullBasis, d.stride}, G{d.nullGram, d.stride};
       double* c = d.c;
       for (int f = 0; f < free; ++f) {
         double v = 0.0;
@@ -620,14 +626,15 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
   return solveExactIteration(bodies, cs, links, n, omega, useBias, system);
 }
 
-bool prepareSmallIsland(const Contact* contacts, const ContactConstraint* cs, uint32_t n, ChainLink* links) {
+bool prepareSmallIsland(const Contact* contacts, const ContactConstraint* cs, uint32_t n, ChainLink* links,
+                        int rowsHeld) {
   if (n < 2 || n > uint32_t(DenseNormalSystem::kMaxLinks)) return false;
   int rows = 0;
   for (uint32_t j = 0; j < n; ++j) {
     if (contacts[cs[j].contact].pinched || !prepareLink(contacts[cs[j].contact], cs[j], links[j])) return false;
     rows += links[j].rank;
   }
-  return rows <= DenseNormalSystem::kMaxRows;
+  return rows <= std::min(rowsHeld, DenseNormalSystem::kMaxRows);
 }
 
 SweepResult solveSmallIslandIteration(BodyStore& bodies, ContactConstraint* cs, ChainLink* links, uint32_t n,

@@ -60,26 +60,39 @@ struct ChainLink {
 bool prepareChain(const Contact* contacts, const ContactConstraint* cs, uint32_t n,
                   uint32_t* mark, ChainLink* links);
 
-/// The factor of a small island's normal rows (prepareSmallIsland): dense, at most kMaxRows rows,
-/// in fixed-size storage so that factoring allocates nothing. A pivoted LDLᵀ that stops at the
-/// system's rank, and its null space, for the least-squares solution of smallest norm (contact_chain.cpp).
+/// The factor of a small island's normal rows (prepareSmallIsland): dense, at most kMaxRows rows. A
+/// pivoted LDLᵀ that stops at the system's rank, and its null space, for the least-squares solution of
+/// smallest norm (contact_chain.cpp). Its matrices live in storage the caller attaches, sized to the
+/// island (a pool the World reuses), so that factoring allocates nothing and a pour of small islands
+/// does not hold 3 × 72² doubles for each.
 struct DenseNormalSystem {
   static constexpr int kMaxLinks = 32, kMaxRows = 72;
+  /// Doubles of storage a system of up to `rows` rows needs.
+  static size_t doublesFor(int rows) { return 3 * size_t(rows) * size_t(rows); }
+  /// Uses `storage` (doublesFor(rowsHeld) doubles) for systems of up to rowsHeld rows.
+  void attach(double* storage, int rowsHeld) {
+    stride = rowsHeld;
+    factor = storage;
+    nullBasis = factor + size_t(rowsHeld) * size_t(rowsHeld);
+    nullGram = nullBasis + size_t(rowsHeld) * size_t(rowsHeld);
+  }
+  int stride = 0;                         ///< rows the attached storage holds (row length of each matrix)
+  double* factor = nullptr;               ///< in pivot order: L below the diagonal, D on it
+  double* nullBasis = nullptr;            ///< T (rank × (rows − rank)): the null space is [T; I]
+  double* nullGram = nullptr;             ///< Cholesky factor of I + TᵀT
   int rows = 0;                           ///< of the active links
   int rank = 0;                           ///< independent rows: the first `rank` in pivot order
   int rowOf[kMaxLinks];                   ///< first row of each active link, -1 for the others
   int order[kMaxRows];                    ///< pivot order: order[k] is the row eliminated k-th
   uint8_t linkOf[kMaxRows], partOf[kMaxRows];  ///< the link and virtual row of each row
-  double factor[kMaxRows][kMaxRows];      ///< in pivot order: L below the diagonal, D on it
-  double nullBasis[kMaxRows][kMaxRows];   ///< T (rank × (rows − rank)): the null space is [T; I]
-  double nullGram[kMaxRows][kMaxRows];    ///< Cholesky factor of I + TᵀT
   double x[kMaxRows], c[kMaxRows];        ///< substitution scratch
 };
 
 /// Builds the links of an island's contacts `cs[0, n)` for the dense solve: at most
-/// DenseNormalSystem::kMaxLinks contacts of one normal each, no pinched body, at most kMaxRows
-/// virtual rows. False: sweep as usual.
-bool prepareSmallIsland(const Contact* contacts, const ContactConstraint* cs, uint32_t n, ChainLink* links);
+/// DenseNormalSystem::kMaxLinks contacts of one normal each, no pinched body, at most `rowsHeld`
+/// (≤ kMaxRows) virtual rows. False: sweep as usual.
+bool prepareSmallIsland(const Contact* contacts, const ContactConstraint* cs, uint32_t n, ChainLink* links,
+                        int rowsHeld = DenseNormalSystem::kMaxRows);
 
 /// One sweep of a small island: as solveChainIteration, with the normal rows of all its links
 /// solved together through `system` (any links sharing a body couple).

@@ -28,6 +28,8 @@
 
 #include <tbb/task_arena.h>
 
+#include <algorithm>
+
 #include <limits>
 #include <memory>
 #include <vector>
@@ -158,6 +160,10 @@ class World {
   /// joints, not split, two bodies in contact whose masses differ by exactMassRatio or more, and a
   /// landing in it lately (counted down in its contacts' Contact::exactSteps).
   bool wantsSmallIslandSolve(uint32_t k);
+  /// The rows island k's small-island system may need: 3 a contact (a force and two torques).
+  int denseRowsOf(uint32_t k) const {
+    return int(std::min<uint32_t>(3 * islands_.islands[k].contactCount, DenseNormalSystem::kMaxRows));
+  }
   void summariseIterations();
   SolverParams solverParams() const;
   /// Runs over the islands in parallel, batched (batchStart_), in two phases per batch: first(k) for
@@ -224,11 +230,15 @@ class World {
   } order_;
   std::vector<ContactConstraint> constraints_;
   std::vector<ChainLink> chainLinks_;  // parallel to constraints_; used for islands that form a chain
-  std::vector<uint8_t> isChain_;       // per island: its contacts were prepared as a chain (1) or small island (2)
+  // Per island: how its normal rows are solved this step, when not swept (0): exactly as a chain, or
+  // together as a small island (contact_chain.h).
+  enum ExactSolve : uint8_t { kChainSolve = 1, kSmallIslandSolve = 2 };
+  std::vector<uint8_t> isChain_;
   // Small islands holding a mass ratio (exactMassRatio), solved with their normal rows together:
   // per island the system it uses, or -1; the systems grow to the most such islands seen.
   std::vector<int32_t> denseOf_;
   std::vector<DenseNormalSystem> denseSystems_;
+  std::vector<double> denseStorage_;  // their matrices, 3 per contact rows a side (grows, then reused)
   std::vector<uint32_t> chainMark_;    // per body: scratch of prepareChain
   // Per island: what its sweeps did, and the spare iterations shared out (world_solve.cpp).
   struct SpareIterationBuffers {

@@ -62,7 +62,7 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias, bool restartDirection, 
     // Contacts out of reach follow the chain (moveOutOfReachToTail), swept as usual.
     const uint32_t chained = isl.contactCount - tailOf(k);
     ChainLink* links = chainLinks_.data() + isl.firstContact;
-    r = isChain_[k] == 1 ? solveChainIteration(bodies_, cs, links, chained, omega, useBias)
+    r = isChain_[k] == kChainSolve ? solveChainIteration(bodies_, cs, links, chained, omega, useBias)
                          : solveSmallIslandIteration(bodies_, cs, links, chained, omega, useBias,
                                                      denseSystems_[denseOf_[k]]);
     if (chained < isl.contactCount)
@@ -159,8 +159,9 @@ void World::solveIslands(int iterations) {
                   prepareChain(contacts_.data(), cs, isl.contactCount - tailOf(k), chainMark_.data(),
                                chainLinks_.data() + isl.firstContact);
     if (!isChain_[k] && denseOf_[k] >= 0 &&
-        prepareSmallIsland(contacts_.data(), cs, isl.contactCount - tailOf(k), chainLinks_.data() + isl.firstContact))
-      isChain_[k] = 2;
+        prepareSmallIsland(contacts_.data(), cs, isl.contactCount - tailOf(k), chainLinks_.data() + isl.firstContact,
+                           denseRowsOf(k)))
+      isChain_[k] = kSmallIslandSolve;
     const VelocityView velocities = velocitiesOf(k);
     if (sp.warmStart) forEachStrip(k, [&](uint32_t b, uint32_t e) {
       warmStart(velocities, cs + b, e - b);
@@ -369,9 +370,20 @@ void World::solve(int iterations) {
   isChain_.assign(m, 0);
   denseOf_.assign(m, -1);
   int32_t dense = 0;
+  size_t storage = 0;
   for (uint32_t k = 0; k < m; ++k)
-    if (wantsSmallIslandSolve(k)) denseOf_[k] = dense++;
-  if (denseSystems_.size() < size_t(dense)) denseSystems_.resize(dense);  // grows, then reused
+    if (wantsSmallIslandSolve(k)) {
+      denseOf_[k] = dense++;
+      storage += DenseNormalSystem::doublesFor(denseRowsOf(k));
+    }
+  if (denseSystems_.size() < size_t(dense)) denseSystems_.resize(dense);  // both grow, then are reused
+  if (denseStorage_.size() < storage) denseStorage_.resize(storage);
+  storage = 0;
+  for (uint32_t k = 0; k < m; ++k)
+    if (denseOf_[k] >= 0) {
+      denseSystems_[denseOf_[k]].attach(denseStorage_.data() + storage, denseRowsOf(k));
+      storage += DenseNormalSystem::doublesFor(denseRowsOf(k));
+    }
   jointConstraints_.resize(islands_.joints.size());
   if (jointTrees_.size() < m) jointTrees_.resize(m);  // grows to the most islands seen, then reused
   if (!joints_.empty()) stiffenJointedBodies();

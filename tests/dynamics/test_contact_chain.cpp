@@ -326,6 +326,13 @@ TEST(ContactChain, SameStateForAnyThreadCount) {
   });
 }
 
+// A small-island system with room for the most rows.
+struct DenseStorage {
+  std::vector<double> doubles = std::vector<double>(DenseNormalSystem::doublesFor(DenseNormalSystem::kMaxRows));
+  DenseNormalSystem system;
+  DenseStorage() { system.attach(doubles.data(), DenseNormalSystem::kMaxRows); }
+};
+
 // A box of mass `top` on two unit boxes standing on the ground, falling at vTop; contacts top down.
 // The top's two face contacts can each carry it alone (rank 3 each): more normal rows than the
 // bodies have ways to move.
@@ -343,8 +350,9 @@ TEST(SmallIsland, AHeavyBoxLandingOnTwoLightOnesStopsInOneSweep) {
   Pile s = boxOnTwoBoxes(10.0f, -2.0f);
   std::vector<ChainLink> links;
   ASSERT_TRUE(s.prepareSmall(links));
-  auto system = std::make_unique<DenseNormalSystem>();
-  solveSmallIslandIteration(s.bodies, s.rows.data(), links.data(), uint32_t(links.size()), 1.0f, true, *system);
+  DenseStorage storage;
+  DenseNormalSystem& system = storage.system;
+  solveSmallIslandIteration(s.bodies, s.rows.data(), links.data(), uint32_t(links.size()), 1.0f, true, system);
   s.expectComplementary();
   EXPECT_LT(s.fastest(), 1e-4f);
   // The 20 N s of the landing go down both sides alike: of the impulses that stop it, the
@@ -363,10 +371,11 @@ TEST(SmallIsland, AgreesWithTheChainSolveOnAColumn) {
   std::vector<ChainLink> chainLinks, denseLinks;
   ASSERT_TRUE(chain.prepare(chainLinks));
   ASSERT_TRUE(dense.prepareSmall(denseLinks));
-  auto system = std::make_unique<DenseNormalSystem>();
+  DenseStorage storage;
+  DenseNormalSystem& system = storage.system;
   solveChainIteration(chain.bodies, chain.rows.data(), chainLinks.data(), uint32_t(chainLinks.size()), 1.0f, true);
   solveSmallIslandIteration(dense.bodies, dense.rows.data(), denseLinks.data(), uint32_t(denseLinks.size()), 1.0f,
-                            true, *system);
+                            true, system);
   dense.expectComplementary();
   for (size_t k = 0; k < chain.rows.size(); ++k)
     for (int i = 0; i < 4; ++i)
@@ -388,9 +397,10 @@ TEST(SmallIsland, RowsAskingForWhatNoMotionGivesDoNotFight) {
     if (p.position.x() < -0.5f) p.depth = 0.02f;
   std::vector<ChainLink> links;
   ASSERT_TRUE(s.prepareSmall(links));
-  auto system = std::make_unique<DenseNormalSystem>();
+  DenseStorage storage;
+  DenseNormalSystem& system = storage.system;
   for (int sweep = 0; sweep < 4; ++sweep)
-    solveSmallIslandIteration(s.bodies, s.rows.data(), links.data(), uint32_t(links.size()), 1.0f, true, *system);
+    solveSmallIslandIteration(s.bodies, s.rows.data(), links.data(), uint32_t(links.size()), 1.0f, true, system);
   const float push = SolverParams{}.maxPushVelocity;
   // (Here 0.17 m/s and at most 0.4 N s a contact.)
   EXPECT_LT(s.fastest(), 2.0f * push);
