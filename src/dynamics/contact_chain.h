@@ -71,6 +71,7 @@ struct DenseNormalSystem {
   static size_t doublesFor(int rows) { return 3 * size_t(rows) * size_t(rows); }
   /// Uses `storage` (doublesFor(rowsHeld) doubles) for systems of up to rowsHeld rows.
   void attach(double* storage, int rowsHeld) {
+    rows = rank = 0;  // nothing factored: a system whose links are all let go substitutes nothing
     stride = rowsHeld;
     factor = storage;
     nullBasis = factor + size_t(rowsHeld) * size_t(rowsHeld);

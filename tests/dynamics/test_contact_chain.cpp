@@ -407,6 +407,28 @@ TEST(SmallIsland, RowsAskingForWhatNoMotionGivesDoNotFight) {
   for (size_t k = 0; k < s.rows.size(); ++k) EXPECT_LT(s.total(k), 4.0f * push) << "contact " << k;
 }
 
+TEST(SmallIsland, AnIslandWhoseContactsAllSeparateSolvesNothing) {
+  // The system's storage is reused island after island. An island whose links all come apart has
+  // nothing to factor, and must not substitute what the last island left (a 5-link column's rows,
+  // past this island's 4 links).
+  DenseStorage storage;
+  std::vector<ChainLink> links;
+  Pile column5 = column(5, -2.0f);
+  ASSERT_TRUE(column5.prepareSmall(links));
+  solveSmallIslandIteration(column5.bodies, column5.rows.data(), links.data(), uint32_t(links.size()), 1.0f, true,
+                            storage.system);
+  storage.system.attach(storage.doubles.data(), DenseNormalSystem::kMaxRows);  // as the World does each step
+  Pile apart = boxOnTwoBoxes(10.0f, 3.0f);
+  for (uint32_t b = 1; b <= 2; ++b) apart.bodies.v[b] = Vec3(0.0f, 1.0f, 0.0f);  // off the ground, below the top
+  ASSERT_TRUE(apart.prepareSmall(links));
+  solveSmallIslandIteration(apart.bodies, apart.rows.data(), links.data(), uint32_t(links.size()), 1.0f, true,
+                            storage.system);
+  EXPECT_EQ(storage.system.rows, 0) << "rows left from the column";
+  for (size_t k = 0; k < apart.rows.size(); ++k) EXPECT_EQ(apart.total(k), 0.0f) << "contact " << k;
+  EXPECT_EQ(apart.bodies.v[3].y(), 3.0f);
+  EXPECT_EQ(apart.bodies.v[1].y(), 1.0f);
+}
+
 TEST(SmallIsland, TakesOnlyIslandsItCanHold) {
   std::vector<ChainLink> links;
   Pile small = boxOnTwoBoxes(10.0f, 0.0f);
