@@ -284,18 +284,17 @@ SweepResult solveExactIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
     }
     if (any) commit(c, applied);
   };
-  auto drivenIn = [&](const ContactConstraint& c) {
+  // The points of a manifold whose rows close faster than `gap` (negative: into each other), as a mask:
+  // below -kRejoinGap the solve drives them in, below kTouchingGap they touch.
+  auto pointsClosing = [&](const ContactConstraint& c, float gap) {
     const Vec3 &va = bodies.v[c.a], &wa = bodies.w[c.a], &vb = bodies.v[c.b], &wb = bodies.w[c.b];
+    unsigned mask = 0;
     for (int i = 0; i < c.count; ++i)
-      if (rowGap(c, i, va, wa, vb, wb, useBias) < -kRejoinGap) return true;
-    return false;
+      if (rowGap(c, i, va, wa, vb, wb, useBias) < gap) mask |= 1u << i;
+    return mask;
   };
-  auto touches = [&](const ContactConstraint& c) {
-    const Vec3 &va = bodies.v[c.a], &wa = bodies.w[c.a], &vb = bodies.v[c.b], &wb = bodies.w[c.b];
-    for (int i = 0; i < c.count; ++i)
-      if (rowGap(c, i, va, wa, vb, wb, useBias) < kTouchingGap) return true;
-    return false;
-  };
+  auto drivenIn = [&](const ContactConstraint& c) { return pointsClosing(c, -kRejoinGap) != 0; };
+  auto touches = [&](const ContactConstraint& c) { return pointsClosing(c, kTouchingGap) != 0; };
 
   // A chain link that let go of lifted points in the last sweep starts again from all of them (the
   // chain's factors cost little to make again). A small island keeps them out until the solve drives
@@ -401,12 +400,9 @@ SweepResult solveExactIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
       }
       const unsigned all = (1u << c.count) - 1u;
       if (link.points == all) continue;
-      const unsigned before = link.points;
-      const Vec3 &va = bodies.v[c.a], &wa = bodies.w[c.a], &vb = bodies.v[c.b], &wb = bodies.w[c.b];
-      for (int i = 0; i < c.count; ++i)
-        if (!(link.points & (1u << i)) && rowGap(c, i, va, wa, vb, wb, useBias) < -kRejoinGap)
-          link.points |= 1u << i;
-      if (link.points == before) continue;
+      const unsigned rejoining = pointsClosing(c, -kRejoinGap) & ~link.points;
+      if (rejoining == 0) continue;
+      link.points |= rejoining;
       buildRows(c, link);
       system.rowsRebuilt(j);
       rowsChanged = true;
