@@ -26,6 +26,9 @@ struct BodyStore {
   std::vector<float> mass;
   std::vector<float> linearDamping, angularDamping;
   std::vector<float> friction, restitution;
+  /// Rolling resistance coefficient, and the radius it acts at: a sphere's or capsule's (the shapes
+  /// that roll), 0 for every other shape.
+  std::vector<float> rollingResistance, rollingRadius;
   /// 1: the body was given a joint (World::addJoint): its gyroscopic term is integrated implicitly, and
   /// the turn projection never moves it (haif/turn_projection.h).
   std::vector<uint8_t> implicitGyro;
@@ -63,6 +66,8 @@ struct BodyStore {
     angularDamping.push_back(0.0f);
     friction.push_back(0.6f);
     restitution.push_back(0.0f);
+    rollingResistance.push_back(0.0f);
+    rollingRadius.push_back(0.0f);
     implicitGyro.push_back(0);
     pinned.push_back(0);
     restTime.push_back(0.0f);

@@ -33,6 +33,12 @@ struct Contact {
   /// Steps its island is still solved exactly after a landing in it (World::solveIslands): the
   /// landing's impulses are no warm start for sweeps at a mass ratio until the island has settled.
   uint8_t exactSteps = 0;
+  // Rolling resistance, last: the fields above keep the offsets the narrow phase and the solver's
+  // stages read them at (placed among them, many_pyramids' step took 4 % longer).
+  /// Most rolling-resistance torque per unit normal force (m): the larger coefficient of the two
+  /// bodies times the larger rolling radius (BodyStore::rollingRadius). 0: no rolling row.
+  float rollingLever = 0.0f;
+  Vec3 rollingImpulse = Vec3::Zero();  ///< accumulated rolling-resistance impulse on b, world (N m s)
   bool touching() const { return manifold.count > 0; }
 };
 

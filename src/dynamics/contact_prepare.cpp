@@ -162,6 +162,40 @@ F4 turningLead(const BodyStore& bodies, const ContactConstraint& cc, const Vec3&
   return F4{};
 }
 
+// Below this relative speed (rad/s of turning, m/s of sliding) a pair is not rolling that way.
+constexpr float kRollingAtRest = 1e-6f;
+// Shortest vector that still gives a direction (a held impulse may be small).
+constexpr float kAxisMinimum = 1e-12f;
+
+// The rolling row (see ContactConstraint::rollingMass) in lane 3 of the friction rows: about the
+// in-plane part of the pair's relative turning; when it does not turn, about the axis of the impulse
+// it last held (a ball held on a slope), else the axis that rolling with its slide would turn
+// about (n × v: the ball at the first step on a slope). Nothing to resist: no row.
+[[gnu::noinline]] void prepareRollingRow(const Contact& contact, const Vec3& n, const Vec3& rA, const Vec3& rB, const Mat3& iA,
+                       const Mat3& iB, const Vec3& vA, const Vec3& wA, const Vec3& vB, const Vec3& wB,
+                       const SolverParams& p, ContactConstraint& cc) {
+  auto inPlane = [&](const Vec3& v) -> Vec3 { return v - v.dot(n) * n; };
+  Vec3 axis = inPlane(wB - wA);
+  if (axis.norm() <= kRollingAtRest) {
+    const Vec3 held = inPlane(contact.rollingImpulse);
+    const Vec3 slide = n.cross(inPlane((vB + wB.cross(rB)) - (vA + wA.cross(rA))));
+    axis = held.norm() > kAxisMinimum ? held : (slide.norm() > kRollingAtRest ? slide : Vec3::Zero());
+  }
+  const float length = axis.norm();
+  if (!(length > kAxisMinimum)) return;
+  axis /= length;
+  const Vec3 invA = iA * axis, invB = iB * axis;
+  const float k = axis.dot(invA) + axis.dot(invB);
+  if (!(k > 0.0f)) return;
+  cc.rollingMass = 1.0f / k;
+  cc.frictionLinear.set(3, Vec3::Zero());
+  cc.frictionAngularA.set(3, axis);
+  cc.frictionAngularB.set(3, axis);
+  cc.frictionInverseA.set(3, invA);
+  cc.frictionInverseB.set(3, invB);
+  cc.frictionImpulse[3] = p.warmStart && !contact.pinched ? contact.rollingImpulse.dot(axis) : 0.0f;
+}
+
 }  // namespace
 
 void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci, const SolverParams& p,
@@ -245,6 +279,8 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
 
   for (int r = 0; r <= ContactConstraint::kRows; ++r) cc.delta[r] = cc.direction[r] = 0.0f;
   cc.blockExact = false;
+  cc.rollingMass = 0.0f;
+  cc.rollingLever = p.rolling ? contact.rollingLever : 0.0f;
 
   // Friction at the centre of the points, about the mean normal. Its three rows are built at once,
   // one lane each (tangent 1, tangent 2, twist), as the sweep reads them.
@@ -334,6 +370,7 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
     cc.frictionImpulse[0] = cc.frictionImpulse[1] = cc.frictionImpulse[2] = 0.0f;
   }
   cc.frictionImpulse[3] = 0.0f;
+  if (cc.rollingLever > 0.0f) prepareRollingRow(contact, n, rA, rB, iA, iB, vA, wA, vB, wB, p, cc);
 }
 
 // Relative travel (m) in a step beyond which a pair's rows are re-aimed for the relax sweeps

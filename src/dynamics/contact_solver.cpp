@@ -53,8 +53,11 @@ inline F4 ontoFrictionCircle(F4 f, float limit) {
   return f * frictionCircleScale(len2, limit, [](float x) { return std::sqrt(x); });
 }
 
-// Lanes 0 and 1 of the tangent impulses, lanes 2 and 3 of the twist impulses.
-inline F4 joinFriction(F4 tangent, F4 twist) { return __builtin_shuffle(tangent, twist, simd4::I4{0, 1, 6, 7}); }
+// Lanes 0 and 1 of the tangent impulses, lane 2 of the twist impulses and lane 3 (the rolling row,
+// solved on its own: rollingRow) of `rolling`.
+inline F4 joinFriction(F4 tangent, F4 twist, F4 rolling) {
+  return __builtin_shuffle(__builtin_shuffle(tangent, twist, simd4::I4{0, 1, 6, 7}), rolling, simd4::I4{0, 1, 2, 7});
+}
 
 
 // What impulses `a` on four rows apply: Σ a_i lin_i (linear) and Σ a_i (I⁻¹ J_ang)_i for each
@@ -170,8 +173,26 @@ inline F4 twistConstants(const ContactConstraint& c) {
   return v;
 }
 
+// The rolling row (lane 3 of the friction rows, angular only: J = [0, −a, 0, a]), after the other
+// friction rows, at the velocities they leave: λ ← clamp(λ − ω m (a·(wb − wa)), ±lever Σλn), the
+// bound from the normal impulses of the previous sweep, as friction's. Returns the impulse's
+// change. Out of line, the velocities by value: few constraints have one, and the sweep's loop
+// keeps its velocities in registers for the others.
+[[gnu::noinline]] float rollingRow(ContactConstraint& c, F4 wa, F4 wb, float omega) {
+  const F4 axis{c.frictionAngularA.x[3], c.frictionAngularA.y[3], c.frictionAngularA.z[3], 0.0f};
+  const float speed = simd4::laneSum(axis * (wb - wa));
+  const float bound = c.rollingLever * simd4::laneSum(load(c.normalImpulse));
+  const float old = c.frictionImpulse[3];
+  const float next = std::clamp(old - omega * c.rollingMass * speed, -bound, bound);
+  c.frictionImpulse[3] = next;
+  return next - old;
+}
+
 // The parts of a sweep, inlined into solveIteration's loop (the exported functions below wrap them
 // for the chain solver): called out of line, large_pyramid's sweeps took 7% longer.
+// `Rolling`: the world has rolling rows (SolverParams::rolling); without, lane 3 is zero throughout and
+// the sweep is spared their test.
+template <bool Rolling>
 [[gnu::always_inline]] inline void frictionRows(ContactConstraint& c, F4& va, F4& wa, F4& vb, F4& wb,
                                                  float omega, bool useBias) {
   using simd4::splat;
@@ -192,12 +213,19 @@ inline F4 twistConstants(const ContactConstraint& c) {
   const F4 m = load(&c.tangentMass[0][0]);  // m00, m01, m10, m11
   const F4 tangent = old - omega * (__builtin_shuffle(m, simd4::I4{0, 2, 0, 2}) * splat<0>(vt) +
                                     __builtin_shuffle(m, simd4::I4{1, 3, 1, 3}) * splat<1>(vt));
-  // Lane 3 is the twist's lane 3, which is 0 (row 3 is zero).
-  const F4 next = joinFriction(ontoFrictionCircle(tangent, simd4::lane<0>(limit)), twist);
+  // Lane 3, the rolling row, keeps its impulse here (its change is 0 in delta and the momentum step);
+  // without rolling rows it is the twist's lane 3, which is 0.
+  const F4 onCircle = ontoFrictionCircle(tangent, simd4::lane<0>(limit));
+  const F4 next = Rolling ? joinFriction(onCircle, twist, old) : joinFriction(onCircle, twist, twist);
   const F4 applied = next - old;
   store(c.frictionImpulse, next);
   store(c.delta + kMaxManifoldPoints, applied);
   applyImpulses(c, frictionImpulses(c, applied), va, wa, vb, wb);
+  if (Rolling && c.rollingMass > 0.0f) {
+    const float change = rollingRow(c, wa, wb, omega);
+    wa -= change * F4{c.frictionInverseA.x[3], c.frictionInverseA.y[3], c.frictionInverseA.z[3], 0.0f};
+    wb += change * F4{c.frictionInverseB.x[3], c.frictionInverseB.y[3], c.frictionInverseB.z[3], 0.0f};
+  }
 }
 
 [[gnu::always_inline]] inline float normalChange(ContactConstraint& c, F4 applied, F4& va, F4& wa, F4& vb, F4& wb) {
@@ -224,7 +252,7 @@ inline F4 twistConstants(const ContactConstraint& c) {
 // The exported parts of a sweep, on velocities the caller holds as Vec3.
 void solveFrictionRows(ContactConstraint& c, Vec3& va, Vec3& wa, Vec3& vb, Vec3& wb, float omega, bool useBias) {
   F4 a = load3(va), b = load3(wa), d = load3(vb), e = load3(wb);
-  frictionRows(c, a, b, d, e, omega, useBias);
+  frictionRows<true>(c, a, b, d, e, omega, useBias);
   store3(va, a), store3(wa, b), store3(vb, d), store3(wb, e);
 }
 
@@ -254,7 +282,7 @@ inline void restartDirectionOf(ContactConstraint& c) {
 }
 
 // One constraint of a sweep, adding to its range's residual and change.
-template <bool Restart, bool MeasureChange>
+template <bool Restart, bool MeasureChange, bool Rolling>
 [[gnu::always_inline]] inline void sweepOne(VelocityView bodies, ContactConstraint& c, float omega, bool useBias,
                                             float& residual, double& change) {
   if constexpr (Restart) restartDirectionOf(c);
@@ -264,7 +292,7 @@ template <bool Restart, bool MeasureChange>
   F4 va = load3(bodies.v[c.a]), wa = load3(bodies.w[c.a]), vb = load3(bodies.v[c.b]), wb = load3(bodies.w[c.b]);
   // Friction first; normal rows last: non-penetration matters more than friction, so each sweep
   // ends with the normal rows satisfied (see solveNormalBlock).
-  frictionRows(c, va, wa, vb, wb, omega, useBias);
+  frictionRows<Rolling>(c, va, wa, vb, wb, omega, useBias);
   residual = std::max(residual, normalRows(c, va, wa, vb, wb, omega, useBias));
   if constexpr (MeasureChange) change += rowsChange(c);
   if (c.dynA) {
@@ -277,47 +305,65 @@ template <bool Restart, bool MeasureChange>
   }
 }
 
-template <bool Restart, bool MeasureChange>
+template <bool Restart, bool MeasureChange, bool Rolling>
 SweepResult sweep(VelocityView bodies, ContactConstraint* cs, size_t n, float omega, bool useBias) {
   float residual = 0.0f;
   double change = 0.0;
-  for (size_t k = 0; k < n; ++k) sweepOne<Restart, MeasureChange>(bodies, cs[k], omega, useBias, residual, change);
+  for (size_t k = 0; k < n; ++k) sweepOne<Restart, MeasureChange, Rolling>(bodies, cs[k], omega, useBias, residual, change);
   return {residual, change};
 }
 
 // Two ranges on disjoint bodies, a constraint of each in turn; each range's result on its own.
-template <bool Restart, bool MeasureChange>
+template <bool Restart, bool MeasureChange, bool Rolling>
 void sweepPair(VelocityView bodies, ContactConstraint* cs1, size_t n1, ContactConstraint* cs2, size_t n2, float omega,
                bool useBias, SweepResult& r1, SweepResult& r2) {
   float res1 = 0.0f, res2 = 0.0f;
   double ch1 = 0.0, ch2 = 0.0;
   const size_t both = std::min(n1, n2);
   for (size_t k = 0; k < both; ++k) {
-    sweepOne<Restart, MeasureChange>(bodies, cs1[k], omega, useBias, res1, ch1);
-    sweepOne<Restart, MeasureChange>(bodies, cs2[k], omega, useBias, res2, ch2);
+    sweepOne<Restart, MeasureChange, Rolling>(bodies, cs1[k], omega, useBias, res1, ch1);
+    sweepOne<Restart, MeasureChange, Rolling>(bodies, cs2[k], omega, useBias, res2, ch2);
   }
-  for (size_t k = both; k < n1; ++k) sweepOne<Restart, MeasureChange>(bodies, cs1[k], omega, useBias, res1, ch1);
-  for (size_t k = both; k < n2; ++k) sweepOne<Restart, MeasureChange>(bodies, cs2[k], omega, useBias, res2, ch2);
+  for (size_t k = both; k < n1; ++k) sweepOne<Restart, MeasureChange, Rolling>(bodies, cs1[k], omega, useBias, res1, ch1);
+  for (size_t k = both; k < n2; ++k) sweepOne<Restart, MeasureChange, Rolling>(bodies, cs2[k], omega, useBias, res2, ch2);
   r1 = {res1, ch1};
   r2 = {res2, ch2};
+}
+
+// The sweep's variants for a call's options.
+template <bool Rolling>
+SweepResult sweepWith(VelocityView bodies, ContactConstraint* cs, size_t n, float omega, bool useBias,
+                      bool restartDirection, bool measureChange) {
+  // A restarted direction is always followed by a momentum step, which needs the change.
+  if (restartDirection) return sweep<true, true, Rolling>(bodies, cs, n, omega, useBias);
+  return measureChange ? sweep<false, true, Rolling>(bodies, cs, n, omega, useBias)
+                       : sweep<false, false, Rolling>(bodies, cs, n, omega, useBias);
+}
+
+template <bool Rolling>
+void sweepPairWith(VelocityView bodies, ContactConstraint* cs1, size_t n1, ContactConstraint* cs2, size_t n2,
+                   float omega, bool useBias, bool restartDirection, bool measureChange, SweepResult& r1,
+                   SweepResult& r2) {
+  if (restartDirection) return sweepPair<true, true, Rolling>(bodies, cs1, n1, cs2, n2, omega, useBias, r1, r2);
+  if (measureChange) return sweepPair<false, true, Rolling>(bodies, cs1, n1, cs2, n2, omega, useBias, r1, r2);
+  sweepPair<false, false, Rolling>(bodies, cs1, n1, cs2, n2, omega, useBias, r1, r2);
 }
 
 }  // namespace
 
 SweepResult solveIteration(VelocityView bodies, ContactConstraint* cs, size_t n, float omega, bool useBias,
-                           bool restartDirection, bool measureChange) {
-  // A restarted direction is always followed by a momentum step, which needs the change.
-  if (restartDirection) return sweep<true, true>(bodies, cs, n, omega, useBias);
-  return measureChange ? sweep<false, true>(bodies, cs, n, omega, useBias)
-                       : sweep<false, false>(bodies, cs, n, omega, useBias);
+                           bool restartDirection, bool measureChange, bool rolling) {
+  return rolling ? sweepWith<true>(bodies, cs, n, omega, useBias, restartDirection, measureChange)
+                 : sweepWith<false>(bodies, cs, n, omega, useBias, restartDirection, measureChange);
 }
 
 void solveIterationPair(VelocityView bodies, ContactConstraint* cs1, size_t n1, ContactConstraint* cs2, size_t n2,
-                        float omega, bool useBias, bool restartDirection, bool measureChange, SweepResult& r1,
-                        SweepResult& r2) {
-  if (restartDirection) return sweepPair<true, true>(bodies, cs1, n1, cs2, n2, omega, useBias, r1, r2);
-  if (measureChange) return sweepPair<false, true>(bodies, cs1, n1, cs2, n2, omega, useBias, r1, r2);
-  sweepPair<false, false>(bodies, cs1, n1, cs2, n2, omega, useBias, r1, r2);
+                        float omega, bool useBias, bool restartDirection, bool measureChange, bool rolling,
+                        SweepResult& r1, SweepResult& r2) {
+  if (rolling)
+    sweepPairWith<true>(bodies, cs1, n1, cs2, n2, omega, useBias, restartDirection, measureChange, r1, r2);
+  else
+    sweepPairWith<false>(bodies, cs1, n1, cs2, n2, omega, useBias, restartDirection, measureChange, r1, r2);
 }
 
 void startDirection(ContactConstraint* cs, size_t n) {
@@ -337,7 +383,8 @@ void accelerate(VelocityView bodies, ContactConstraint* cs, size_t n, float beta
     const float limit = c.friction * simd4::laneSum(next);
     const F4 oldFriction = load(c.frictionImpulse);
     const F4 step = oldFriction + beta * df;
-    const F4 nextFriction = joinFriction(ontoFrictionCircle(step, limit), clampTwist(step, F4{} + limit * c.twistRadius));
+    const F4 nextFriction =
+        joinFriction(ontoFrictionCircle(step, limit), clampTwist(step, F4{} + limit * c.twistRadius), oldFriction);
     store(c.frictionImpulse, nextFriction);
     applyToBodies(bodies, c, next - old, nextFriction - oldFriction);
     store(d, beta * dn + load(c.delta));
@@ -358,6 +405,7 @@ void storeImpulses(const ContactConstraint* cs, size_t n, Contact* contacts) {
       for (int i = 0; i < c.count; ++i) ct.normalImpulse[i] = 0.0f;
       ct.frictionImpulse.setZero();
       ct.twistImpulse = 0.0f;
+      if (c.rollingLever > 0.0f) ct.rollingImpulse.setZero();
       continue;
     }
     for (int i = 0; i < c.count; ++i) ct.normalImpulse[i] = c.normalImpulse[i];
@@ -365,6 +413,8 @@ void storeImpulses(const ContactConstraint* cs, size_t n, Contact* contacts) {
     ct.frictionImpulse = c.frictionImpulse[0] * c.tangent1() + c.frictionImpulse[1] * c.tangent2();
     ct.twistImpulse = c.frictionImpulse[2];
     ct.frictionNormal = c.twistAxis();
+    if (c.rollingLever > 0.0f)
+      ct.rollingImpulse = c.rollingMass > 0.0f ? Vec3(c.frictionImpulse[3] * c.rollingAxis()) : Vec3::Zero();
     // Friction at its limit slides: the anchor lets go and is set anew where the pair next sticks.
     const float limit = c.friction * simd4::laneSum(load(c.normalImpulse));
     const float t1 = c.frictionImpulse[0], t2 = c.frictionImpulse[1];

@@ -54,6 +54,9 @@ struct SolverParams {
   /// settling, a cascade 10 sweeps do not converge through crossed layers (a Jenga tower with 0.1 mm
   /// gaps fell at 4 and 10 iterations). Held where it was placed, it stands.
   float skin = 0.001f;
+  /// Some body has a rolling resistance (the World sets it): rolling rows are built where a contact
+  /// has a lever (Contact::rollingLever). Off, no contact's rolling fields are read or written.
+  bool rolling = false;
 };
 
 static_assert(kMaxManifoldPoints == 4, "the normal rows of a manifold are one 4-wide vector");
@@ -98,27 +101,35 @@ struct alignas(16) ContactConstraint {
   /// `blockExact` false: the points have different normals or are degenerate; passes only.
   alignas(16) float blockInverse[kMaxManifoldPoints][kMaxManifoldPoints];
   bool blockExact;
+  // Rolling resistance (Contact::rollingLever > 0; docs/solver.md, "Rolling resistance"): one angular
+  // row about the axis the pair rolls about, in lane 3 of the friction rows (no linear part; the
+  // axis as both angular parts; its impulse in frictionImpulse[3]), solved after the other friction
+  // rows and bounded by rollingLever times the normal impulses. rollingMass 0: no such row.
+  // These two fill what was padding before the friction rows.
+  float rollingMass;   // 1 / (a (I_A⁻¹ + I_B⁻¹) a)
+  float rollingLever;  // m: the most torque per unit normal force
 
   // Friction at the centre of the manifold. Friction per point would make the sliding torque
   // depend on how the load happens to be split among 4 coplanar points (a split the normal rows
   // leave undetermined): a box sliding down a ramp spun about the normal. Three rows, stored by
   // component like the normal rows: tangent 1, tangent 2 and the twist about the mean normal
-  // (row 3 is zero).
-  RowVectors frictionLinear;                        // t1, t2, 0: the rows' linear part
-  RowVectors frictionAngularA, frictionAngularB;    // rA×t1, rA×t2, n and rB×t1, rB×t2, n
+  // (row 3: the rolling row, or zero).
+  RowVectors frictionLinear;                        // t1, t2, 0, 0: the rows' linear part
+  RowVectors frictionAngularA, frictionAngularB;    // rA×t1, rA×t2, n, a and rB×t1, rB×t2, n, a
   RowVectors frictionInverseA, frictionInverseB;    // I^-1 times them
   // The sweep reads the next four floats as one vector, and the four after them as another.
   alignas(16) float tangentMass[2][2];  // inverse of the 2x2 block of the tangent rows
   float twistCoupling[2];           // K of each tangent row with the twist row
   float twistMass;                  // 1 / (n (I_A^-1 + I_B^-1) n)
   float twistRadius;                // lever (m) turning the friction limit into a twist limit
-  alignas(16) float frictionImpulse[4];  // tangent 1, tangent 2, twist, 0
+  alignas(16) float frictionImpulse[4];  // tangent 1, tangent 2, twist, rolling
   // b of the tangent rows in a main sweep: the anchors' drift pulled back (m/s); twist and lane 3 zero.
   alignas(16) float frictionBias[4];
 
   Vec3 tangent1() const { return frictionLinear.row(0); }
   Vec3 tangent2() const { return frictionLinear.row(1); }
   Vec3 twistAxis() const { return frictionAngularA.row(2); }
+  Vec3 rollingAxis() const { return frictionAngularA.row(3); }
 
   /// Rows in the order of `delta` and `direction`: the normal rows, then tangent 1, tangent 2, twist.
   static constexpr int kRows = kMaxManifoldPoints + 3;
@@ -128,6 +139,8 @@ struct alignas(16) ContactConstraint {
   alignas(16) float delta[kRows + 1];
   alignas(16) float direction[kRows + 1];
 };
+// Every sweep streams the constraints: the rolling row's constants took padding, not new bytes.
+static_assert(sizeof(ContactConstraint) == 784, "a constraint's size is a sweep's memory traffic");
 
 /// Passes of projected Gauss-Seidel over a manifold's own normal rows per sweep, when the exact
 /// block solve (blockInverse) does not apply or would pull on a point. Row by row with body updates
@@ -306,11 +319,12 @@ struct SweepResult {
 /// direction first takes its last sweep's change, as startDirection would, while the constraint is
 /// in cache for the sweep anyway (a pass of its own cost a serial 0.85 ms of large_pyramid's 2-thread step).
 /// `measureChange` false: SweepResult::change is left 0 (only the momentum step reads it).
+/// `rolling`: some constraint may have a rolling row (SolverParams::rolling); false, they are not looked for.
 SweepResult solveIteration(VelocityView bodies, ContactConstraint* cs, size_t n, float omega, bool useBias,
-                           bool restartDirection = false, bool measureChange = true);
+                           bool restartDirection = false, bool measureChange = true, bool rolling = false);
 inline SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size_t n, float omega, bool useBias,
-                                  bool restartDirection = false, bool measureChange = true) {
-  return solveIteration(VelocityView(bodies), cs, n, omega, useBias, restartDirection, measureChange);
+                                  bool restartDirection = false, bool measureChange = true, bool rolling = false) {
+  return solveIteration(VelocityView(bodies), cs, n, omega, useBias, restartDirection, measureChange, rolling);
 }
 
 /// solveIteration over two ranges that share no dynamic body (two strips of a split island swept in
@@ -318,8 +332,8 @@ inline SweepResult solveIteration(BodyStore& bodies, ContactConstraint* cs, size
 /// same bits as two calls, but the two chains of velocity updates overlap in the processor (a thin
 /// strip's neighbours mostly share a body, and each waits for the last).
 void solveIterationPair(VelocityView bodies, ContactConstraint* cs1, size_t n1, ContactConstraint* cs2, size_t n2,
-                        float omega, bool useBias, bool restartDirection, bool measureChange, SweepResult& r1,
-                        SweepResult& r2);
+                        float omega, bool useBias, bool restartDirection, bool measureChange, bool rolling,
+                        SweepResult& r1, SweepResult& r2);
 
 /// Nonsmooth nonlinear conjugate gradient on top of the sweeps (after Silcowitz, Niebe and Erleben
 /// 2010). A sweep's impulse change is the negative gradient of the projected problem; momentum

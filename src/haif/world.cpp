@@ -57,6 +57,10 @@ uint32_t World::addBody(const BodyDef& def) {
   bodies_.w[id] = def.angularVelocity;
   bodies_.friction[id] = def.friction;
   bodies_.restitution[id] = def.restitution;
+  bodies_.rollingResistance[id] = def.rollingResistance;
+  hasRolling_ |= def.rollingResistance > 0.0f;
+  bodies_.rollingRadius[id] =
+      def.shape.type == ShapeType::Sphere || def.shape.type == ShapeType::Capsule ? def.shape.radius : 0.0f;
   bodies_.linearDamping[id] = def.linearDamping;
   bodies_.angularDamping[id] = def.angularDamping;
   shapes_.push_back(def.shape);

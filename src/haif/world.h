@@ -46,6 +46,10 @@ struct BodyDef {
   float density = 1000.0f;
   float friction = 0.6f;
   float restitution = 0.0f;
+  /// Rolling resistance coefficient (≥ 0): a sphere or capsule rolling on a surface feels a torque
+  /// against its roll of this times the normal force times its radius (docs/solver.md, "Rolling
+  /// resistance"). 0: it rolls on, as an ideal rigid ball does.
+  float rollingResistance = 0.0f;
   float linearDamping = 0.0f;
   float angularDamping = 0.0f;
 };
@@ -116,6 +120,8 @@ class World {
 
  private:
   void updateBroadPhase();
+  /// A contact for a new pair, with the two bodies' materials combined.
+  Contact newContact(uint32_t a, uint32_t b) const;
   void narrowPhase();
   /// How far a compound's far parts move in a second from its spin (|ω| times its reach); 0 for
   /// single shapes (their margin follows the centre's speed only).
@@ -196,6 +202,8 @@ class World {
   std::vector<Aabb> bounds_;
   std::vector<WaterVolume> water_;
   bool hasMesh_ = false;
+  /// A body has a rolling resistance: the solver builds rolling rows (SolverParams::rolling).
+  bool hasRolling_ = false;
 
   BroadPhase broadPhase_;
   PairMap pairs_;

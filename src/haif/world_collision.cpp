@@ -23,6 +23,19 @@ constexpr uint8_t kPairApart = 2;  // no points and the fat boxes separated: the
 
 }  // namespace
 
+Contact World::newContact(uint32_t a, uint32_t b) const {
+  Contact c;
+  c.a = std::min(a, b);
+  c.b = std::max(a, b);
+  c.friction = std::sqrt(bodies_.friction[a] * bodies_.friction[b]);
+  c.restitution = std::max(bodies_.restitution[a], bodies_.restitution[b]);
+  // Either surface's resistance acts (a ball on carpet, a rubber ball on a floor), at the radius of
+  // the one that rolls.
+  c.rollingLever = std::max(bodies_.rollingResistance[a], bodies_.rollingResistance[b]) *
+                   std::max(bodies_.rollingRadius[a], bodies_.rollingRadius[b]);
+  return c;
+}
+
 void World::updateBroadPhase() {
   const uint32_t n = bodyCount();
   const float dt = settings_.dt;
@@ -94,13 +107,8 @@ void World::updateBroadPhase() {
   uint32_t created = 0;
   for (uint32_t r = 0; r < runs; ++r) {
     for (const auto& [a, b] : collision_.newPairRuns[r]) {
-      Contact c;
-      c.a = std::min(a, b);
-      c.b = std::max(a, b);
-      c.friction = std::sqrt(bodies_.friction[a] * bodies_.friction[b]);
-      c.restitution = std::max(bodies_.restitution[a], bodies_.restitution[b]);
       pairs_.set(PairMap::key(a, b), static_cast<uint32_t>(contacts_.size()));
-      contacts_.push_back(c);
+      contacts_.push_back(newContact(a, b));
       ++created;
     }
   }

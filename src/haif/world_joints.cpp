@@ -99,13 +99,8 @@ void World::breakJoints() {
     jointPairs_.erase(key);
     // The broad phase reports only new overlaps: a pair that already overlaps gets its contact here.
     if (pairs_.find(key) == PairMap::kNotFound && broadPhase_.fatOverlap(d.bodyA, d.bodyB)) {
-      Contact c;
-      c.a = std::min(d.bodyA, d.bodyB);
-      c.b = std::max(d.bodyA, d.bodyB);
-      c.friction = std::sqrt(bodies_.friction[c.a] * bodies_.friction[c.b]);
-      c.restitution = std::max(bodies_.restitution[c.a], bodies_.restitution[c.b]);
       pairs_.set(key, static_cast<uint32_t>(contacts_.size()));
-      contacts_.push_back(c);
+      contacts_.push_back(newContact(d.bodyA, d.bodyB));
     }
   }
 }

@@ -23,6 +23,7 @@ constexpr uint8_t kExactStepsAfterLanding = 30;
 SolverParams World::solverParams() const {
   SolverParams sp = settings_.contact;
   sp.dt = settings_.dt;
+  sp.rolling = hasRolling_;
   // The anchors pull only where rest damping cannot hold a pile's creep (no gravity, or damping
   // off): both stop the creep of resting contacts, and the anchors' pull also feeds the sway of a
   // pile set sliding, which then topples (docs/solver.md, "Friction anchors").
@@ -67,7 +68,7 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias, bool restartDirection, 
                                                      denseSystems_[denseOf_[k]]);
     if (chained < isl.contactCount)
       r.merge(solveIteration(bodies_, cs + chained, isl.contactCount - chained, omega, useBias, restartDirection,
-                             measureChange));
+                             measureChange, hasRolling_));
   } else if (isWide(k)) {
     const LaneBatches lb = lanesOf(k);
     if (restartDirection) startDirectionLanes(cs, isl.contactCount, lb);
@@ -79,11 +80,12 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias, bool restartDirection, 
     r = forEachStrip(
         k,
         [&](uint32_t b, uint32_t e) {
-          return solveIteration(velocities, cs + b, e - b, omega, useBias, restartDirection, measureChange);
+          return solveIteration(velocities, cs + b, e - b, omega, useBias, restartDirection, measureChange,
+                                hasRolling_);
         },
         [&](uint32_t b1, uint32_t e1, uint32_t b2, uint32_t e2, SweepResult& r1, SweepResult& r2) {
           solveIterationPair(velocities, cs + b1, e1 - b1, cs + b2, e2 - b2, omega, useBias, restartDirection,
-                             measureChange, r1, r2);
+                             measureChange, hasRolling_, r1, r2);
         });
   }
   if (isl.jointCount > 0) {
@@ -134,7 +136,8 @@ LaneBatches World::lanesOf(uint32_t k) {
   return {laneRun_.data() + first, wideOf_.data() + first, wide_.data()};
 }
 
-bool World::isWide(uint32_t k) const { return settings_.wideSolve && !isChain_[k]; }
+// The lanes hold no rolling row: a world with rolling resistance sweeps every island as one.
+bool World::isWide(uint32_t k) const { return settings_.wideSolve && !isChain_[k] && !hasRolling_; }
 
 void World::solveIslands(int iterations) {
   const SolverParams sp = solverParams();

@@ -128,6 +128,7 @@ bool bodyDefFor(const SceneDesc& scene, const BodyDesc& b, BodyDef& def, std::st
   def.density = mat.density;
   def.friction = mat.friction;
   def.restitution = mat.restitution;
+  def.rollingResistance = mat.rollingResistance;
   def.linearDamping = b.linearDamping;
   def.angularDamping = b.angularDamping;
   Vec3 centroid = Vec3::Zero();

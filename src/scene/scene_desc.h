@@ -20,6 +20,7 @@ struct MaterialDesc {
   std::string name = "default";
   float friction = 0.6f;
   float restitution = 0.0f;
+  float rollingResistance = 0.0f;  ///< ≥ 0; see BodyDef::rollingResistance
   float density = 1000.0f;  ///< kg/m^3, used when a body gives no mass
 };
 

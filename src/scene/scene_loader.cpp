@@ -75,13 +75,13 @@ void parseSettings(const JsonNode& node, SimSettings& settings) {
   settings.frames = optInt(node, "frames", settings.frames, 1, 100000000);
 }
 
-// Materials: {"name": {friction, restitution, density}}; "default" may be redefined.
+// Materials: {"name": {friction, restitution, rolling_resistance, density}}; "default" may be redefined.
 void parseMaterials(const JsonNode& node, std::vector<MaterialDesc>& materials) {
   requireObject(node);
   for (auto it = node.json().begin(); it != node.json().end(); ++it) {
     const JsonNode m = node.member(it.key());
     if (it.key().empty()) failAtKey(node, "", "a material needs a name");
-    checkKeys(m, {"friction", "restitution", "density"});
+    checkKeys(m, {"friction", "restitution", "rolling_resistance", "density"});
     MaterialDesc desc;
     desc.name = it.key();
     desc.friction = optNonNegative(m, "friction", desc.friction);
@@ -91,6 +91,7 @@ void parseMaterials(const JsonNode& node, std::vector<MaterialDesc>& materials) 
       if (!(desc.restitution >= 0.0f && desc.restitution <= 1.0f))
         fail(r, "must be in [0, 1] (got " + formatNumber(desc.restitution) + ")");
     }
+    desc.rollingResistance = optNonNegative(m, "rolling_resistance", desc.rollingResistance);
     desc.density = optPositive(m, "density", desc.density);
     if (desc.name == "default") materials[0] = desc;
     else materials.push_back(desc);

@@ -340,7 +340,7 @@ bool validateScene(const SceneDesc& scene, SceneIssue& issue) {
   for (const MaterialDesc& m : scene.materials) {
     const std::string f = "materials." + m.name + ".";
     if (!c.nonNegative(f + "friction", m.friction) || !c.nonNegative(f + "restitution", m.restitution) ||
-        !c.positive(f + "density", m.density))
+        !c.nonNegative(f + "rolling_resistance", m.rollingResistance) || !c.positive(f + "density", m.density))
       return false;
     if (m.restitution > 1.0f) return c.bad(f + "restitution", "must be in [0, 1] (got " + formatNumber(m.restitution) + ")");
   }

@@ -38,7 +38,7 @@ TEST(SweepPair, TwoRangesInTurnGiveTheBitsOfTwoSweeps) {
         solveIteration(apart.bodies, ca + kFirst, kAll - kFirst, 1.0f, s.useBias, s.restart, s.measure);
     SweepResult p1, p2;
     solveIterationPair(VelocityView(paired.bodies), cp, kFirst, cp + kFirst, kAll - kFirst, 1.0f, s.useBias,
-                       s.restart, s.measure, p1, p2);
+                       s.restart, s.measure, false, p1, p2);
     expectSameBits(p1, a1, "first range");
     expectSameBits(p2, a2, "second range");
   }

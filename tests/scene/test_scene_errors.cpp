@@ -121,6 +121,8 @@ TEST(SceneErrors, MaterialRules) {
   EXPECT_ERROR(R"({"materials": {"ice": {"friction": -0.1}}})", "-0.1", "materials.ice.friction: must be >= 0 (got -0.1)");
   EXPECT_ERROR(R"({"materials": {"ice": {"restitution": -1}}})", "-1", "materials.ice.restitution: must be in [0, 1] (got -1)");
   EXPECT_ERROR(R"({"materials": {"ice": {"density": 0}}})", "0}", "materials.ice.density: must be > 0 (got 0)");
+  EXPECT_ERROR(R"({"materials": {"felt": {"rolling_resistance": -0.01}}})", "-0.01",
+               "materials.felt.rolling_resistance: must be >= 0 (got -0.01)");
   EXPECT_ERROR(R"({"materials": {"ice": {"frict": 1}}})", "\"frict\"", "materials.ice.frict: unknown key (did you mean 'friction'?)");
   const std::string text = "{\"materials\": {\"steel\": {}},\n \"bodies\": [{\"shape\": {\"type\": \"box\"}, \"material\": \"stel\"}]}";
   EXPECT_ERROR(text, "\"stel\"", "bodies[0].material: unknown material 'stel' (did you mean 'steel'?)");

@@ -99,6 +99,30 @@ TEST(SceneFiles, DefaultsAreApplied) {
   EXPECT_TRUE(b.orientation.coeffs().isApprox(Quat::Identity().coeffs()));
 }
 
+// A material's rolling resistance reaches the bodies made of it, with the radius they roll on.
+TEST(SceneFiles, RollingResistanceReachesTheBodies) {
+  const SceneDesc s = parseOk(R"({
+    "materials": {"felt": {"rolling_resistance": 0.04}},
+    "bodies": [{"shape": {"type": "sphere", "radius": 0.3}, "material": "felt"},
+               {"shape": {"type": "capsule", "radius": 0.2, "half_height": 0.5}, "position": [2, 0, 0], "material": "felt"},
+               {"shape": {"type": "box"}, "position": [4, 0, 0], "material": "felt"},
+               {"shape": {"type": "sphere"}, "position": [6, 0, 0]}]
+  })");
+  ASSERT_EQ(s.materials.size(), 2u);
+  EXPECT_FLOAT_EQ(s.materials[1].rollingResistance, 0.04f);
+  EXPECT_EQ(s.materials[0].rollingResistance, 0.0f);
+  World w;
+  std::string error;
+  ASSERT_TRUE(buildWorld(s, w, error)) << error;
+  const BodyStore& b = w.bodies();
+  EXPECT_FLOAT_EQ(b.rollingResistance[0], 0.04f);
+  EXPECT_FLOAT_EQ(b.rollingRadius[0], 0.3f);
+  EXPECT_FLOAT_EQ(b.rollingRadius[1], 0.2f);
+  EXPECT_FLOAT_EQ(b.rollingResistance[2], 0.04f);
+  EXPECT_EQ(b.rollingRadius[2], 0.0f);  // a box does not roll
+  EXPECT_EQ(b.rollingResistance[3], 0.0f);
+}
+
 TEST(SceneFiles, KeysAreReadIntoTheDescription) {
   const SceneDesc s = parseOk(R"({
     "name": "custom",
