@@ -13,23 +13,15 @@ struct RampResult {
 RampResult slideOnRamp(float mu, float thetaDeg, float seconds) {
   World w;
   addGround(w);
-  const float th = thetaDeg * kPi / 180.0f;
-  const Quat q(Eigen::AngleAxisf(th, Vec3::UnitZ()));
-  const Vec3 up = q * Vec3::UnitY(), uphill = q * Vec3::UnitX();
-  BodyDef ramp;
-  ramp.kind = BodyKind::Static;
-  ramp.shape = Shape::box(Vec3(10.0f, 0.5f, 3.0f));
-  ramp.xf.p = Vec3(0.0f, 10.0f, 0.0f);
-  ramp.xf.q = q;
-  ramp.friction = mu;
-  w.addBody(ramp);
+  const Ramp ramp = addRamp(w, thetaDeg, mu);
+  const Vec3 up = ramp.up, uphill = ramp.uphill;
   // A flat box (half height 0.25) so it cannot tip over before it slides.
   BodyDef box;
   box.shape = Shape::box(Vec3(0.5f, 0.25f, 0.5f));
   box.mass = 1.0f;
   box.friction = mu;  // friction combines as sqrt(mu_a mu_b) = mu
-  box.xf.q = q;
-  box.xf.p = ramp.xf.p + up * (0.5f + 0.25f) + uphill * 4.0f;
+  box.xf.q = ramp.q;
+  box.xf.p = ramp.restingPlace(0.25f);
   const uint32_t b = w.addBody(box);
   const Vec3 start = box.xf.p;
   const int steps = int(seconds * 60.0f + 0.5f);

@@ -68,20 +68,12 @@ TEST(RollingResistance, WithoutItABallRollsOn) {
 float rollDownRamp(float rollingResistance, float thetaDeg, float seconds) {
   World w;
   addGround(w);
-  const float th = thetaDeg * kPi / 180.0f;
-  const Quat q(Eigen::AngleAxisf(th, Vec3::UnitZ()));
-  const Vec3 up = q * Vec3::UnitY(), uphill = q * Vec3::UnitX();
-  BodyDef ramp;
-  ramp.kind = BodyKind::Static;
-  ramp.shape = Shape::box(Vec3(10.0f, 0.5f, 3.0f));
-  ramp.xf.p = Vec3(0.0f, 10.0f, 0.0f);
-  ramp.xf.q = q;
-  w.addBody(ramp);
-  const Vec3 start = ramp.xf.p + up * (0.5f + 0.5f) + uphill * 4.0f;
+  const Ramp ramp = addRamp(w, thetaDeg);
+  const Vec3 start = ramp.restingPlace(0.5f);
   const uint32_t b = addRoller(w, Shape::sphere(0.5f), start, Quat::Identity(), rollingResistance);
   const int steps = int(seconds * 60.0f + 0.5f);
   for (int s = 0; s < steps; ++s) w.step();
-  return -(w.bodies().xf[b].p - start).dot(uphill);
+  return -(w.bodies().xf[b].p - start).dot(ramp.uphill);
 }
 
 TEST(RollingResistance, ABallHoldsOnASlopeFlatterThanItsCoefficient) {

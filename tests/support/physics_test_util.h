@@ -21,6 +21,32 @@ inline uint32_t addGround(World& w, float friction = 0.6f, float restitution = 0
   return w.addBody(d);
 }
 
+/// A static ramp (box half (10, 0.5, 3), centre at y = 10) tilted by thetaDeg about z: its
+/// orientation, its up and uphill directions and its centre.
+struct Ramp {
+  Quat q;
+  Vec3 up, uphill, centre;
+  /// Where a body's centre sits `height` above the top face, 4 m uphill of the middle.
+  Vec3 restingPlace(float height) const { return centre + up * (0.5f + height) + uphill * 4.0f; }
+};
+
+inline Ramp addRamp(World& w, float thetaDeg, float friction = 0.6f) {
+  const float th = thetaDeg * kPi / 180.0f;
+  Ramp r;
+  r.q = Quat(Eigen::AngleAxisf(th, Vec3::UnitZ()));
+  r.up = r.q * Vec3::UnitY();
+  r.uphill = r.q * Vec3::UnitX();
+  BodyDef d;
+  d.kind = BodyKind::Static;
+  d.shape = Shape::box(Vec3(10.0f, 0.5f, 3.0f));
+  d.xf.p = Vec3(0.0f, 10.0f, 0.0f);
+  d.xf.q = r.q;
+  d.friction = friction;
+  w.addBody(d);
+  r.centre = d.xf.p;
+  return r;
+}
+
 inline uint32_t addBox(World& w, const Vec3& p, const Vec3& half = Vec3::Constant(0.5f), float mass = 1.0f,
                        const Quat& q = Quat::Identity()) {
   BodyDef d;
