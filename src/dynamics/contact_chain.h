@@ -66,7 +66,11 @@ bool prepareChain(const Contact* contacts, const ContactConstraint* cs, uint32_t
 /// island (a pool the World reuses), so that factoring allocates nothing and a pour of small islands
 /// does not hold 3 × 72² doubles for each.
 struct DenseNormalSystem {
-  static constexpr int kMaxLinks = 32, kMaxRows = 72;
+  /// kMaxLinks contacts at most; islands of more than kCheapLinks need a larger mass ratio
+  /// (World::wantsSmallIslandSolve): the factor's cost grows as the cube of its rows.
+  static constexpr int kMaxLinks = 64, kCheapLinks = 32, kCheapRows = 72, kMaxRows = 192;
+  /// How much larger: at this ratio a sweep passes under 4 % of a landing through a light body.
+  static constexpr float kLargeIslandRatioFactor = 6.0f;
   /// Doubles of storage a system of up to `rows` rows needs.
   static size_t doublesFor(int rows) { return 3 * size_t(rows) * size_t(rows); }
   /// Uses `storage` (doublesFor(rowsHeld) doubles) for systems of up to rowsHeld rows.
@@ -86,6 +90,7 @@ struct DenseNormalSystem {
   int rowOf[kMaxLinks];                   ///< first row of each active link, -1 for the others
   int order[kMaxRows];                    ///< pivot order: order[k] is the row eliminated k-th
   uint8_t linkOf[kMaxRows], partOf[kMaxRows];  ///< the link and virtual row of each row
+  float asks[kMaxLinks];                  ///< per active link: its lowest point bias (pivot priority)
   double x[kMaxRows], c[kMaxRows];        ///< substitution scratch
 };
 

@@ -166,9 +166,13 @@ class World {
   /// joints, not split, two bodies in contact whose masses differ by exactMassRatio or more, and a
   /// landing in it lately (counted down in its contacts' Contact::exactSteps).
   bool wantsSmallIslandSolve(uint32_t k);
-  /// The rows island k's small-island system may need: 3 a contact (a force and two torques).
+  /// The rows island k's small-island system may need: 3 a contact (a force and two torques), at
+  /// most kCheapRows for an island of up to kCheapLinks contacts.
   int denseRowsOf(uint32_t k) const {
-    return int(std::min<uint32_t>(3 * islands_.islands[k].contactCount, DenseNormalSystem::kMaxRows));
+    const uint32_t contacts = islands_.islands[k].contactCount;
+    const int most = contacts > uint32_t(DenseNormalSystem::kCheapLinks) ? DenseNormalSystem::kMaxRows
+                                                                          : DenseNormalSystem::kCheapRows;
+    return int(std::min<uint32_t>(3 * contacts, uint32_t(most)));
   }
   void summariseIterations();
   SolverParams solverParams() const;

@@ -35,7 +35,8 @@ struct WorldSettings {
   bool chainSolve = true;           ///< solve the normal rows of chain-shaped islands (stacks) exactly
   /// Small islands (up to 32 contacts) in which a body rests on or against one this many times
   /// lighter or heavier have their normal rows solved together each sweep (contact_chain.h): sweeps
-  /// pass a heavy body's landing through a light one a fraction per sweep. 0: off.
+  /// pass a heavy body's landing through a light one a fraction per sweep. Islands of up to 64
+  /// contacts need 6 times this ratio (DenseNormalSystem::kLargeIslandRatioFactor). 0: off.
   float exactMassRatio = 4.0f;
   bool reuseManifolds = true;       ///< keep a pair's manifold while its bodies keep still (manifold_cache.h)
   JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)
