@@ -472,5 +472,31 @@ TEST(SmallIsland, TakesOnlyIslandsItCanHold) {
   EXPECT_FALSE(big.prepareSmall(links));
 }
 
+TEST(SmallIsland, AnIslandPastTheCheapSizeCountsOnlyTheRowsOfContactsThatTouch) {
+  // 40 contacts, each a face (3 rows): given room for 60 rows, the column is taken only when half
+  // of its contacts are gaps of 5 cm, which take part only once the solve drives them in.
+  const int links40 = 40, room = 60;
+  ASSERT_GT(links40, DenseNormalSystem::kCheapLinks);
+  std::vector<ChainLink> links;
+  auto prepared = [&](Pile& p) {
+    SolverParams sp;
+    p.rows.resize(p.contacts.size());
+    for (size_t k = 0; k < p.contacts.size(); ++k) prepareContact(p.bodies, p.contacts[k], uint32_t(k), sp, p.rows[k]);
+    links.resize(p.rows.size());
+    return prepareSmallIsland(p.contacts.data(), p.rows.data(), uint32_t(p.rows.size()), links.data(), room);
+  };
+  Pile touching = column(links40, 0.0f);
+  EXPECT_FALSE(prepared(touching));
+  Pile gapped = column(links40, 0.0f);
+  for (size_t k = 0; k < gapped.contacts.size(); k += 2)
+    for (ContactPoint& p : gapped.contacts[k].manifold.points) p.depth = -0.05f;
+  EXPECT_TRUE(prepared(gapped));
+  // Up to kCheapLinks contacts every row counts, touching or not.
+  Pile small = column(DenseNormalSystem::kCheapLinks, 0.0f);
+  for (size_t k = 0; k < small.contacts.size(); k += 2)
+    for (ContactPoint& p : small.contacts[k].manifold.points) p.depth = -0.05f;
+  EXPECT_FALSE(prepared(small)) << "96 rows in room for 60";
+}
+
 }  // namespace
 }  // namespace haif
