@@ -26,6 +26,8 @@ constexpr double kDenseNullRatio = 1e-11;
 /// A dense system's pivot is chosen by how much its link asks among the rows whose remaining
 /// diagonal is at least this fraction of the largest remaining one.
 constexpr double kDensePivotRatio = 1e-3;
+static_assert(3 * DenseNormalSystem::kMaxLinks <= DenseNormalSystem::kMaxRows,
+              "every active link's rows are numbered before the system's room is checked");
 
 // The virtual rows of a link over its points in link.points, and their diagonal block.
 void buildRows(const ContactConstraint& c, ChainLink& link) {
@@ -511,7 +513,14 @@ struct DenseSystem {
         d.partOf[rows] = uint8_t(q);
       }
     }
-    if (rows > d.stride) return false;  // more links touch than the system was given room for
+    // A factor that fails keeps nothing: the next call with the same links must not substitute
+    // what an earlier system left.
+    auto failed = [&] {
+      for (uint32_t j = 0; j < n; ++j) links[j].factoredActive = !links[j].active;
+      d.rows = d.rank = 0;
+      return false;
+    };
+    if (rows > d.stride) return failed();  // more links touch than the system was given room for
     d.rows = d.rank = rows;
     if (rows == 0) return true;
     const RowMajor S{d.factor, d.stride};
@@ -531,7 +540,7 @@ struct DenseSystem {
       d.order[i] = i;
       largest = std::max(largest, S[i][i]);
     }
-    if (!(largest > 0.0)) return false;
+    if (!(largest > 0.0)) return failed();
     // How much each active link asks: its most demanding point's bias (push-out negative, a
     // speculative gap positive). Where rows depend on each other, the ones eliminated first are
     // solved and the last follow from them, so the most demanding go first: a 100 kg box 1 cm into
