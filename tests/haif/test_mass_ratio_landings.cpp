@@ -19,9 +19,12 @@ using test::addGround;
 struct Placed {
   std::vector<uint32_t> ids;
   std::vector<Vec3> start;
-  void add(uint32_t id, const Vec3& p) {
+  // A box placed at p (a 0.2 m cube of 1 kg unless said), noted with where it was placed.
+  uint32_t box(World& w, const Vec3& p, const Vec3& halfExtents = Vec3::Constant(0.1f), float mass = 1.0f) {
+    const uint32_t id = addBox(w, p, halfExtents, mass);
     ids.push_back(id);
     start.push_back(p);
+    return id;
   }
   // The farthest any of them is from where it was placed.
   float farthestMove(const World& w) const {
@@ -44,12 +47,8 @@ struct Placed {
 Placed addLooseTable(World& w) {
   Placed table;
   for (const float x : {-0.9f, 0.9f})
-    for (const float z : {-0.4f, 0.4f}) {
-      const Vec3 p(x, 0.4f, z);
-      table.add(addBox(w, p, Vec3(0.05f, 0.4f, 0.05f), 0.5f), p);
-    }
-  const Vec3 top(0.0f, 0.825f, 0.0f);
-  table.add(addBox(w, top, Vec3(1.0f, 0.025f, 0.5f), 20.0f), top);
+    for (const float z : {-0.4f, 0.4f}) table.box(w, Vec3(x, 0.4f, z), Vec3(0.05f, 0.4f, 0.05f), 0.5f);
+  table.box(w, Vec3(0.0f, 0.825f, 0.0f), Vec3(1.0f, 0.025f, 0.5f), 20.0f);
   return table;
 }
 
@@ -85,8 +84,8 @@ TEST(MassRatioLandings, AHeavyBlockLandingOnAPyramidOfLightCubesLeavesItStanding
     World w(settingsAt(iterations));
     addGround(w);
     Placed cubes;
-    for (const float x : {-0.21f, 0.0f, 0.21f}) cubes.add(addBox(w, Vec3(x, 0.1f, 0.0f), Vec3::Constant(0.1f)), Vec3(x, 0.1f, 0.0f));
-    for (const float x : {-0.105f, 0.105f}) cubes.add(addBox(w, Vec3(x, 0.3f, 0.0f), Vec3::Constant(0.1f)), Vec3(x, 0.3f, 0.0f));
+    for (const float x : {-0.21f, 0.0f, 0.21f}) cubes.box(w, Vec3(x, 0.1f, 0.0f));
+    for (const float x : {-0.105f, 0.105f}) cubes.box(w, Vec3(x, 0.3f, 0.0f));
     const uint32_t block = addBox(w, Vec3(0.0f, 1.0f, 0.0f), Vec3(0.3f, 0.1f, 0.15f), 500.0f);
     for (int s = 0; s < 600; ++s) w.step();
     EXPECT_LT(cubes.farthestMove(w), 0.005f) << iterations << " iterations";
@@ -103,7 +102,7 @@ TEST(MassRatioLandings, ASlabDroppedOnFourLightCubesRestsOnThem) {
     addGround(w);
     Placed cubes;
     for (const float x : {-0.8f, 0.8f})
-      for (const float z : {-0.8f, 0.8f}) cubes.add(addBox(w, Vec3(x, 0.1f, z), Vec3::Constant(0.1f)), Vec3(x, 0.1f, z));
+      for (const float z : {-0.8f, 0.8f}) cubes.box(w, Vec3(x, 0.1f, z));
     const uint32_t slab = addBox(w, Vec3(0.0f, 0.75f, 0.0f), Vec3(1.0f, 0.05f, 1.0f), 1000.0f);
     for (int s = 0; s < 600; ++s) w.step();
     // The landing (3 m/s) presses each contact in by up to the slop, which push-out leaves alone:
@@ -126,11 +125,8 @@ TEST(MassRatioLandings, AWeightDroppedOnAStackOfBoardsStopsOnTheTopOne) {
     addGround(w);
     Placed stack;
     for (const float x : {-0.4f, 0.4f})
-      for (const float z : {-0.4f, 0.4f}) stack.add(addBox(w, Vec3(x, 0.1f, z), Vec3::Constant(0.1f)), Vec3(x, 0.1f, z));
-    for (int j = 0; j < 12; ++j) {
-      const Vec3 p(0.0f, 0.22f + 0.04f * float(j), 0.0f);
-      stack.add(addBox(w, p, Vec3(0.6f, 0.02f, 0.6f), 2.0f), p);
-    }
+      for (const float z : {-0.4f, 0.4f}) stack.box(w, Vec3(x, 0.1f, z));
+    for (int j = 0; j < 12; ++j) stack.box(w, Vec3(0.0f, 0.22f + 0.04f * float(j), 0.0f), Vec3(0.6f, 0.02f, 0.6f), 2.0f);
     const uint32_t box = addBox(w, Vec3(0.0f, 1.3f, 0.0f), Vec3::Constant(0.25f), 100.0f);
     float fastestAtRest = 0.0f;
     for (int s = 0; s < 120; ++s) {
@@ -157,10 +153,8 @@ TEST(MassRatioLandings, ACrateDroppedOnAPyramidOfFourteenCubesRestsOnItsTop) {
       const int m = sides[layer];
       const float first = -0.105f * float(m - 1);
       for (int i = 0; i < m; ++i)
-        for (int k = 0; k < m; ++k) {
-          const Vec3 p(first + 0.21f * float(i), 0.1f + 0.2f * float(layer), first + 0.21f * float(k));
-          cubes.add(addBox(w, p, Vec3::Constant(0.1f)), p);
-        }
+        for (int k = 0; k < m; ++k)
+          cubes.box(w, Vec3(first + 0.21f * float(i), 0.1f + 0.2f * float(layer), first + 0.21f * float(k)));
     }
     const uint32_t crate = addBox(w, Vec3(0.0f, 1.0f, 0.0f), Vec3::Constant(0.2f), 200.0f);
     uint32_t mostContacts = 0;
