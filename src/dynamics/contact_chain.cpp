@@ -1,5 +1,7 @@
 #include "dynamics/contact_chain.h"
 
+#include "dynamics/joint_coupling.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -23,6 +25,11 @@ constexpr float kPullTolerance = 1e-4f;
 /// A dense system's pivots below this fraction of its largest diagonal are its null space: impulses
 /// that move no body (DenseSystem leaves ~1e-15 there; a 500 kg block on 1 kg cubes has ~1e-8).
 constexpr double kDenseNullRatio = 1e-11;
+/// Through joints, a row whose remaining diagonal is below this fraction of its own diagonal without
+/// the joints is null: what the joints take back is known to the tolerance jointResponse checks
+/// (1e-4 of the push), so a motion the joints forbid leaves about that much, not double's noise.
+/// The rows this serves move 1/10-1/100 as much through joints as without (a car's wheels 1/53).
+constexpr double kCoupledNullRatio = 1e-3;
 /// A dense system's pivot is chosen by how much its link asks among the rows whose remaining
 /// diagonal is at least this fraction of the largest remaining one.
 constexpr double kDensePivotRatio = 1e-3;
@@ -278,6 +285,7 @@ SweepResult solveExactIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
     load(c, va, wa, vb, wb);
     applyNormalChange(c, applied, va, wa, vb, wb);
     store(c, va, wa, vb, wb);
+    system.committed(c, applied);
     for (int i = 0; i < c.count; ++i) c.delta[i] += before[i];
   };
   auto release = [&](ContactConstraint& c) {
@@ -307,8 +315,12 @@ SweepResult solveExactIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
   // an unloaded contact at rest that the least-squares solve gives a pull of float noise was let go
   // and taken back round after round, and 7 of 10 sweeps of tower_collapse's small islands ended
   // unsettled (and factored their system five times).
+  system.beginSweep(bodies, useBias);
   bool rowsChanged = false;
-  for (uint32_t j = 0; j < n; ++j) links[j].letGo = false;
+  for (uint32_t j = 0; j < n; ++j) {
+    links[j].letGo = false;
+    links[j].releases = 0;
+  }
   for (uint32_t j = 0; j < n && !System::kKeepsWhatItLetGo; ++j) {
     const unsigned all = (1u << cs[j].count) - 1u;
     if (links[j].points == all) continue;
@@ -321,8 +333,13 @@ SweepResult solveExactIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
     ContactConstraint& c = cs[j];
     Vec3 va, wa, vb, wb;
     load(c, va, wa, vb, wb);
+    const Vec3 va0 = va, wa0 = wa, vb0 = vb, wb0 = wb;
     solveFrictionRows(c, va, wa, vb, wb, omega, useBias);
     store(c, va, wa, vb, wb);
+    if (system.noteChanges()) {
+      if (c.dynA) system.changed(c.a, va - va0, wa - wa0);
+      if (c.dynB) system.changed(c.b, vb - vb0, wb - wb0);
+    }
     for (int i = 0; i < kMaxManifoldPoints; ++i) c.delta[i] = 0.0f;
     // Links take part that touch or still push; more join when the solve makes them touch. A
     // pushing link that separates (a box that was landing and now rises, a speculative contact
@@ -333,10 +350,27 @@ SweepResult solveExactIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
     bool pushes = false;
     for (int i = 0; i < c.count; ++i) pushes |= c.normalImpulse[i] > 0.0f;
     links[j].active = touches(c) || pushes;
+    // Through joints, a link takes part with its points that touch or push; the others join when
+    // the solve drives them in. Solved exactly, its rows would also fit the gaps of points apart
+    // and turn a body to close them: a plank hinged over a fulcrum, meeting its edge, was spun back
+    // at 5.8 rad/s to close the 2 cm gap at the other edge within the step (the force row that
+    // would have lifted it instead went into the hinge, null through the joints).
+    if (system.noteChanges() && links[j].active) {
+      unsigned part = pointsClosing(c, kTouchingGap);
+      for (int i = 0; i < c.count; ++i)
+        if (c.normalImpulse[i] > 0.0f) part |= 1u << i;
+      if (part != 0 && part != links[j].points) {
+        links[j].points = part;
+        buildRows(c, links[j]);
+        system.rowsRebuilt(j);
+        rowsChanged = true;
+      }
+    }
   }
 
   bool solved = false;
   for (int round = 0; round < kChainRounds && !solved; ++round) {
+    system.holdChange(bodies);  // each round starts from velocities its rows were factored for
     computeRhs(bodies, cs, links, n, useBias);
     if (!system.factor(rowsChanged)) break;
     rowsChanged = false;
@@ -377,10 +411,20 @@ SweepResult solveExactIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
         // solves the others against it). If that was wrong, it touches again and rejoins below.
         release(c);
         link.letGo = true;
+        ++link.releases;
       }
       link.active = false;
     }
-    if (pulling) continue;
+    if (pulling) {
+      // Through joints, rows that depend on each other (a motion the joints allow only together)
+      // share the least impulse that serves them, which can pull on one asking for a different
+      // push-out; let go, it is driven in again, round after round. Let go twice, the rounds give
+      // way to the manifolds' passes at once instead of after kChainRounds factors.
+      bool cycling = false;
+      for (uint32_t j = 0; j < n && system.noteChanges(); ++j) cycling |= links[j].releases >= 2;
+      if (cycling) break;
+      continue;
+    }
     for (uint32_t j = 0; j < n; ++j) {
       if (!links[j].active) continue;
       float applied[kMaxManifoldPoints] = {};
@@ -390,6 +434,7 @@ SweepResult solveExactIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
       }
       commit(cs[j], applied);
     }
+    system.holdChange(bodies);
     // Links left out that the solve now pushes into join, as do points a link let go of, and the
     // chain is solved again from here.
     solved = true;
@@ -414,6 +459,7 @@ SweepResult solveExactIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
       solved = false;
     }
   }
+  system.holdChange(bodies);  // what the last round let go of
   // When the rounds did not settle, the manifolds' own passes.
   for (uint32_t j = 0; j < n && !solved; ++j) {
     ContactConstraint& c = cs[j];
@@ -448,6 +494,11 @@ struct ChainSystem {
   bool factor(bool rowsChanged) { return factorChain(links, n, rowsChanged); }
   void substitute() { substituteChain(links, n); }
   void rowsRebuilt(uint32_t j) { recouple(cs, links, n, j); }
+  void beginSweep(BodyStore&, bool) {}
+  void holdChange(BodyStore&) {}
+  void committed(const ContactConstraint&, const float*) {}
+  void changed(uint32_t, const Vec3&, const Vec3&) {}
+  bool noteChanges() const { return false; }
 };
 
 // R_j M⁻¹ R_lᵀ through every dynamic body links j and l share (j == l: its diagonal block), added
@@ -498,6 +549,28 @@ struct DenseSystem {
   ChainLink* links;
   uint32_t n;
   DenseNormalSystem& d;
+  const JointCoupling* joints;  // the island's joint tree, or null
+
+  // Solved through joints, the rows see what the tree leaves: the first sweep of the main and of the
+  // relax sweeps starts from velocities the tree holds (later ones: the sweep before ended with it),
+  // and each round's change is answered by the joints as the rows were factored for.
+  void beginSweep(BodyStore& moving, bool useBias) {
+    if (!joints) return;
+    if (d.jointsHeld && d.heldWithBias == useBias) return;
+    joints->tree->solve(moving, joints->joints, useBias);
+    d.jointsHeld = true;
+    d.heldWithBias = useBias;
+  }
+  void holdChange(BodyStore& moving) {
+    if (joints) holdJointChange(moving, *joints);
+  }
+  void committed(const ContactConstraint& c, const float* applied) {
+    if (joints) addContactChange(*joints, c, applied);
+  }
+  void changed(uint32_t body, const Vec3& dv, const Vec3& dw) {
+    if (joints) addBodyChange(*joints, body, dv, dw);
+  }
+  bool noteChanges() const { return joints != nullptr; }
 
   bool factor(bool rowsChanged) {
     bool same = !rowsChanged;
@@ -535,12 +608,39 @@ struct DenseSystem {
             S[d.rowOf[j] + r][d.rowOf[l] + q] = S[d.rowOf[l] + q][d.rowOf[j] + r] = block[r][q];
       }
     }
+    // Below its floor a row's remaining diagonal is null: a share of the largest one, or through
+    // joints a share of its own before the joints' part.
+    double floor[DenseNormalSystem::kMaxRows];
+    if (joints) {
+      for (int i = 0; i < rows; ++i) floor[i] = kCoupledNullRatio * S[i][i];
+      // Less what the joints take back: column by column, symmetric up to the tree's float rows.
+      for (uint32_t l = 0; l < n; ++l) {
+        if (d.rowOf[l] < 0) continue;
+        for (int q = 0; q < links[l].rank; ++q) {
+          if (!jointResponse(bodies, *joints, cs[l], links[l], q)) {
+            clearJointResponse(*joints);
+            d.jointsUnsound = true;  // the tree cannot carry these rows: swept from here on this step
+            return failed();
+          }
+          for (uint32_t j = 0; j < n; ++j) {
+            if (d.rowOf[j] < 0) continue;
+            for (int r = 0; r < links[j].rank; ++r)
+              S[d.rowOf[j] + r][d.rowOf[l] + q] += rowAtResponse(*joints, cs[j], links[j], r);
+          }
+          clearJointResponse(*joints);
+        }
+      }
+      for (int i = 0; i < rows; ++i)
+        for (int k = 0; k < i; ++k) S[i][k] = S[k][i] = 0.5 * (S[i][k] + S[k][i]);
+    }
     double largest = 0.0;
     for (int i = 0; i < rows; ++i) {
       d.order[i] = i;
       largest = std::max(largest, S[i][i]);
     }
     if (!(largest > 0.0)) return failed();
+    if (!joints)
+      for (int i = 0; i < rows; ++i) floor[i] = kDenseNullRatio * largest;
     // How much each active link asks: its most demanding point's bias (push-out negative, a
     // speculative gap positive). Where rows depend on each other, the ones eliminated first are
     // solved and the last follow from them, so the most demanding go first: a 100 kg box 1 cm into
@@ -561,14 +661,15 @@ struct DenseSystem {
     // diagonal between rows of one link.
     for (int k = 0; k < rows; ++k) {
       double remaining = 0.0;
-      for (int i = k; i < rows; ++i) remaining = std::max(remaining, S[i][i]);
-      if (!(remaining > kDenseNullRatio * largest)) {
+      for (int i = k; i < rows; ++i)
+        if (S[i][i] > floor[d.order[i]]) remaining = std::max(remaining, S[i][i]);
+      if (!(remaining > 0.0)) {
         d.rank = k;
         break;
       }
       int p = -1;
       for (int i = k; i < rows; ++i) {
-        if (!(S[i][i] >= kDensePivotRatio * remaining)) continue;
+        if (!(S[i][i] >= kDensePivotRatio * remaining) || (joints && !(S[i][i] > floor[d.order[i]]))) continue;
         if (p < 0) {
           p = i;
           continue;
@@ -662,8 +763,8 @@ SweepResult solveChainIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
 }
 
 bool prepareSmallIsland(const Contact* contacts, const ContactConstraint* cs, uint32_t n, ChainLink* links,
-                        int rowsHeld) {
-  if (n < 2 || n > uint32_t(DenseNormalSystem::kMaxLinks)) return false;
+                        int rowsHeld, uint32_t minLinks) {
+  if (n < minLinks || n > uint32_t(DenseNormalSystem::kMaxLinks)) return false;
   // An island of up to kCheapLinks contacts counts the rows of all of them, one larger (taken only
   // at a larger mass ratio) those of the links that touch or push now: contacts apart by a gap (a
   // pyramid's neighbours a centimetre to the side) take part only when the solve drives them in, and
@@ -681,8 +782,9 @@ bool prepareSmallIsland(const Contact* contacts, const ContactConstraint* cs, ui
 }
 
 SweepResult solveSmallIslandIteration(BodyStore& bodies, ContactConstraint* cs, ChainLink* links, uint32_t n,
-                                      float omega, bool useBias, DenseNormalSystem& system) {
-  DenseSystem dense{bodies, cs, links, n, system};
+                                      float omega, bool useBias, DenseNormalSystem& system,
+                                      const JointCoupling* joints) {
+  DenseSystem dense{bodies, cs, links, n, system, joints};
   return solveExactIteration(bodies, cs, links, n, omega, useBias, dense);
 }
 

@@ -44,6 +44,7 @@ struct ChainLink {
   bool active;                              ///< takes part in the solve
   bool factoredActive;                      ///< `active` when the factors below were made
   bool letGo;                               ///< let go of (pulling) in this sweep
+  uint8_t releases;                         ///< times it was let go of in this sweep
   double pivotInverse[3][3];                ///< inverse of the eliminated diagonal block
   double lower[3][3];                       ///< nextᵀ of the previous link times its pivotInverse
   // The factors in float for the substitutions, which run every round of every sweep; they are
@@ -92,18 +93,26 @@ struct DenseNormalSystem {
   uint8_t linkOf[kMaxRows], partOf[kMaxRows];  ///< the link and virtual row of each row
   float asks[kMaxLinks];                  ///< per active link: its lowest point bias (pivot priority)
   double x[kMaxRows], c[kMaxRows];        ///< substitution scratch
+  /// Solved through joints: the tree has held the bodies this step, in main (true) or relax sweeps.
+  bool jointsHeld = false, heldWithBias = false;
+  /// Solved through joints: the tree's answer to a row did not hold its joints (jointResponse).
+  bool jointsUnsound = false;
 };
 
-/// Builds the links of an island's contacts `cs[0, n)` for the dense solve: at most
-/// DenseNormalSystem::kMaxLinks contacts of one normal each, no pinched body, at most `rowsHeld`
-/// (≤ kMaxRows) virtual rows. False: sweep as usual.
+/// Builds the links of an island's contacts `cs[0, n)` for the dense solve: at least `minLinks` and
+/// at most DenseNormalSystem::kMaxLinks contacts of one normal each, no pinched body, at most
+/// `rowsHeld` (≤ kMaxRows) virtual rows. False: sweep as usual.
 bool prepareSmallIsland(const Contact* contacts, const ContactConstraint* cs, uint32_t n, ChainLink* links,
-                        int rowsHeld = DenseNormalSystem::kMaxRows);
+                        int rowsHeld = DenseNormalSystem::kMaxRows, uint32_t minLinks = 2);
+
+struct JointCoupling;
 
 /// One sweep of a small island: as solveChainIteration, with the normal rows of all its links
-/// solved together through `system` (any links sharing a body couple).
+/// solved together through `system` (any links sharing a body couple). With `joints`, the rows are
+/// solved through the island's joint tree (dynamics/joint_coupling.h).
 SweepResult solveSmallIslandIteration(BodyStore& bodies, ContactConstraint* cs, ChainLink* links, uint32_t n,
-                                      float omega, bool useBias, DenseNormalSystem& system);
+                                      float omega, bool useBias, DenseNormalSystem& system,
+                                      const JointCoupling* joints = nullptr);
 
 /// One sweep of a chain: friction rows contact by contact, then the normal rows of the whole chain
 /// solved exactly (see above). Same result fields as solveIteration.

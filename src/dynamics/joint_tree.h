@@ -35,6 +35,12 @@ class JointTree {
   uint32_t loops() const { return loops_; }
   /// The tree is dropped when more than one joint in this many closes a loop (a grid: one in two).
   static constexpr uint32_t kMaxLoopShare = 8;
+  /// For solves against other right-hand sides (dynamics/joint_coupling.h): the e-th joint of the
+  /// elimination order (an index into js), its rows of the right-hand side, and the solve in place,
+  /// x = K⁻¹ g over the tree's rows. The next solve() or project() overwrites them.
+  uint32_t jointAt(uint32_t e) const { return order_[e].c; }
+  double* rowsOf(uint32_t e) { return &rhs_[kJointBlockRows * e]; }
+  void solveRows() { solveInPlace(); }
 
  private:
   struct Block {

@@ -13,6 +13,7 @@
 #include "dynamics/contact_solver.h"
 #include "dynamics/integrator.h"
 #include "dynamics/joint_solver.h"
+#include "dynamics/joint_coupling.h"
 #include "dynamics/joint_tree.h"
 #include "haif/island_split.h"
 #include "haif/islands.h"
@@ -166,6 +167,11 @@ class World {
   /// joints, not split, two bodies in contact whose masses differ by exactMassRatio or more, and a
   /// landing in it lately (counted down in its contacts' Contact::exactSteps).
   bool wantsSmallIslandSolve(uint32_t k);
+  /// Island k may have its contacts solved through its joints (dynamics/joint_coupling.h): joints and
+  /// at most kCheapLinks contacts, not split. Whether it is, prepareIsland decides from its rows.
+  bool mayCoupleJoints(uint32_t k) const;
+  /// The coupling of island k's contacts with its joint tree, for its sweeps.
+  JointCoupling jointCouplingOf(uint32_t k);
   /// The rows island k's small-island system may need: 3 a contact (a force and two torques), at
   /// most kCheapRows for an island of up to kCheapLinks contacts.
   int denseRowsOf(uint32_t k) const {
@@ -244,13 +250,16 @@ class World {
   std::vector<ChainLink> chainLinks_;  // parallel to constraints_; used for islands that form a chain
   // Per island: how its normal rows are solved this step, when not swept (0): exactly as a chain, or
   // together as a small island (contact_chain.h).
-  enum ExactSolve : uint8_t { kChainSolve = 1, kSmallIslandSolve = 2 };
+  enum ExactSolve : uint8_t { kChainSolve = 1, kSmallIslandSolve = 2, kJointCoupledSolve = 3 };
   std::vector<uint8_t> isChain_;
   // Small islands holding a mass ratio (exactMassRatio), solved with their normal rows together:
   // per island the system it uses, or -1; the systems grow to the most such islands seen.
   std::vector<int32_t> denseOf_;
   std::vector<DenseNormalSystem> denseSystems_;
   std::vector<double> denseStorage_;  // their matrices, 3 per contact rows a side (grows, then reused)
+  // Per body, zero between uses: the joints' response to one contact row (dynamics/joint_coupling.h).
+  std::vector<Eigen::Vector3d> couplingDv_, couplingDw_;
+  std::vector<Eigen::Vector3d> couplingChangeV_, couplingChangeW_;  // per body: change since the joints held
   std::vector<uint32_t> chainMark_;    // per body: scratch of prepareChain
   // Per island: what its sweeps did, and the spare iterations shared out (world_solve.cpp).
   struct SpareIterationBuffers {

@@ -36,7 +36,9 @@ struct WorldSettings {
   /// Small islands (up to 32 contacts) in which a body rests on or against one this many times
   /// lighter or heavier have their normal rows solved together each sweep (contact_chain.h): sweeps
   /// pass a heavy body's landing through a light one a fraction per sweep. Islands of up to 64
-  /// contacts need 6 times this ratio (DenseNormalSystem::kLargeIslandRatioFactor). 0: off.
+  /// contacts need 6 times this ratio (DenseNormalSystem::kLargeIslandRatioFactor). An island with
+  /// joints and up to 32 contacts has them solved through its joint tree where a contact moves at most
+  /// 1/(2 × this) as much through the joints as on its own bodies (dynamics/joint_coupling.h). 0: off.
   float exactMassRatio = 4.0f;
   bool reuseManifolds = true;       ///< keep a pair's manifold while its bodies keep still (manifold_cache.h)
   JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)

@@ -63,9 +63,15 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias, bool restartDirection, 
     // Contacts out of reach follow the chain (moveOutOfReachToTail), swept as usual.
     const uint32_t chained = isl.contactCount - tailOf(k);
     ChainLink* links = chainLinks_.data() + isl.firstContact;
-    r = isChain_[k] == kChainSolve ? solveChainIteration(bodies_, cs, links, chained, omega, useBias)
-                         : solveSmallIslandIteration(bodies_, cs, links, chained, omega, useBias,
-                                                     denseSystems_[denseOf_[k]]);
+    if (isChain_[k] == kChainSolve) {
+      r = solveChainIteration(bodies_, cs, links, chained, omega, useBias);
+    } else {
+      const JointCoupling coupling = isChain_[k] == kJointCoupledSolve ? jointCouplingOf(k) : JointCoupling{};
+      DenseNormalSystem& system = denseSystems_[denseOf_[k]];
+      r = solveSmallIslandIteration(bodies_, cs, links, chained, omega, useBias, system,
+                                    coupling.tree ? &coupling : nullptr);
+      if (system.jointsUnsound) isChain_[k] = 0;  // the joints cannot carry the rows: swept this step
+    }
     if (chained < isl.contactCount)
       r.merge(solveIteration(bodies_, cs + chained, isl.contactCount - chained, omega, useBias, restartDirection,
                              measureChange, hasRolling_));
@@ -161,7 +167,7 @@ void World::solveIslands(int iterations) {
     isChain_[k] = settings_.chainSolve && layoutOf_[k] < 0 && isl.jointCount == 0 &&
                   prepareChain(contacts_.data(), cs, isl.contactCount - tailOf(k), chainMark_.data(),
                                chainLinks_.data() + isl.firstContact);
-    if (!isChain_[k] && denseOf_[k] >= 0 &&
+    if (!isChain_[k] && denseOf_[k] >= 0 && isl.jointCount == 0 &&
         prepareSmallIsland(contacts_.data(), cs, isl.contactCount - tailOf(k), chainLinks_.data() + isl.firstContact,
                            denseRowsOf(k)))
       isChain_[k] = kSmallIslandSolve;
@@ -172,6 +178,17 @@ void World::solveIslands(int iterations) {
     });
     if (isWide(k)) forEachLaneRange(k, packLanes);
     if (isl.jointCount > 0) prepareJoints(k, sp);
+    // Contacts whose push the joints carry away are solved through them (its rows need the tree).
+    if (denseOf_[k] >= 0 && isl.jointCount > 0 && jointTrees_[k].size() == isl.jointCount) {
+      ChainLink* links = chainLinks_.data() + isl.firstContact;
+      const uint32_t n = isl.contactCount - tailOf(k);
+      const float ratio = settings_.exactMassRatio * kJointCoupledRatioFactor;
+      if (prepareSmallIsland(contacts_.data(), cs, n, links, denseRowsOf(k), 1) &&
+          jointsCarryContacts(bodies_, jointCouplingOf(k), cs, links, n, ratio)) {
+        isChain_[k] = kJointCoupledSolve;
+        denseSystems_[denseOf_[k]].jointsHeld = denseSystems_[denseOf_[k]].jointsUnsound = false;
+      }
+    }
   };
   auto sweepIslandMain = [&](uint32_t k) {
     const Island& isl = islands_.islands[k];
@@ -320,6 +337,27 @@ bool World::wantsSmallIslandSolve(uint32_t k) {
   return landing || settling;
 }
 
+bool World::mayCoupleJoints(uint32_t k) const {
+  const Island& isl = islands_.islands[k];
+  return settings_.exactMassRatio > 0.0f && settings_.joints.treeSolve && isl.jointCount > 0 &&
+         isl.contactCount > 0 && isl.contactCount <= uint32_t(DenseNormalSystem::kCheapLinks) && layoutOf_[k] < 0;
+}
+
+JointCoupling World::jointCouplingOf(uint32_t k) {
+  const Island& isl = islands_.islands[k];
+  JointCoupling c;
+  c.tree = &jointTrees_[k];
+  c.joints = jointConstraints_.data() + isl.firstJoint;
+  c.jointCount = isl.jointCount;
+  c.dv = couplingDv_.data();
+  c.dw = couplingDw_.data();
+  c.changeV = couplingChangeV_.data();
+  c.changeW = couplingChangeW_.data();
+  c.contacts = constraints_.data() + isl.firstContact;
+  c.contactCount = isl.contactCount - tailOf(k);
+  return c;
+}
+
 bool World::onlyPinned(uint32_t k) const {
   const Island& isl = islands_.islands[k];
   for (uint32_t j = 0; j < isl.bodyCount; ++j)
@@ -380,12 +418,20 @@ void World::solve(int iterations) {
   denseOf_.assign(m, -1);
   int32_t dense = 0;
   size_t storage = 0;
+  bool coupling = false;
   for (uint32_t k = 0; k < m; ++k)
-    if (wantsSmallIslandSolve(k)) {
+    if (wantsSmallIslandSolve(k) || mayCoupleJoints(k)) {
+      coupling |= islands_.islands[k].jointCount > 0;
       denseOf_[k] = dense++;
       storage += DenseNormalSystem::doublesFor(denseRowsOf(k));
     }
   if (denseSystems_.size() < size_t(dense)) denseSystems_.resize(dense);  // both grow, then are reused
+  if (coupling && couplingDv_.size() != bodyCount()) {
+    couplingDv_.assign(bodyCount(), Eigen::Vector3d::Zero());
+    couplingDw_.assign(bodyCount(), Eigen::Vector3d::Zero());
+    couplingChangeV_.assign(bodyCount(), Eigen::Vector3d::Zero());
+    couplingChangeW_.assign(bodyCount(), Eigen::Vector3d::Zero());
+  }
   if (denseStorage_.size() < storage) denseStorage_.resize(storage);
   storage = 0;
   for (uint32_t k = 0; k < m; ++k)

@@ -1,0 +1,226 @@
+#include "dynamics/joint_coupling.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace haif {
+
+namespace {
+
+using Vec3d = Eigen::Vector3d;
+
+/// The joints' answer to a push counts as holding them when it leaves their rows moving at most this
+/// fraction of what the push alone gives them (the tree's own rounding leaves ~1e-9).
+constexpr double kJointHoldTolerance = 1e-4;
+/// A contact row that moves less than this fraction as much through the joints as on its own bodies
+/// is held by them (its force goes into a joint); an island with one is swept.
+constexpr double kJointHeldRow = 1e-3;
+
+Vec3d toDouble(const Vec3& v) { return v.cast<double>(); }
+
+// M⁻¹ R_rᵀ at one side of contact c (side 0: body A, 1: body B); zero for a body that does not move.
+void freeResponse(const BodyStore& bodies, const ContactConstraint& c, const ChainLink& link, int r, int side,
+                  Vec3d& dv, Vec3d& dw) {
+  const bool dynamic = side == 0 ? c.dynA : c.dynB;
+  if (!dynamic) {
+    dv.setZero();
+    dw.setZero();
+    return;
+  }
+  const uint32_t body = side == 0 ? c.a : c.b;
+  const double sign = side == 0 ? -1.0 : 1.0;
+  dv = sign * double(bodies.invMass[body]) * double(link.lin[r]) * toDouble(c.normal.row(0));
+  dw = sign * (bodies.invInertiaWorld[body].cast<double>() * toDouble(side == 0 ? link.angA[r] : link.angB[r]));
+}
+
+}  // namespace
+
+bool jointResponse(const BodyStore& bodies, const JointCoupling& coupling, const ContactConstraint& c,
+                   const ChainLink& link, int r) {
+  JointTree& tree = *coupling.tree;
+  Vec3d freeV[2], freeW[2];
+  freeResponse(bodies, c, link, r, 0, freeV[0], freeW[0]);
+  freeResponse(bodies, c, link, r, 1, freeV[1], freeW[1]);
+  // The push as each joint's bodies see it: only the contact's own two bodies move.
+  auto pushAt = [&](uint32_t body, bool dynamic, Vec3d& v, Vec3d& w) {
+    v.setZero();
+    w.setZero();
+    if (!dynamic) return;
+    if (c.dynA && body == c.a) {
+      v += freeV[0];
+      w += freeW[0];
+    }
+    if (c.dynB && body == c.b) {
+      v += freeV[1];
+      w += freeW[1];
+    }
+  };
+  // The rows' velocity with the joints' answer `withJoints` added (dv, dw), or without it.
+  auto rowVelocity = [&](const JointConstraint& jc, int i, bool withJoints) {
+    Vec3d va, wa, vb, wb;
+    pushAt(jc.a, jc.dynA, va, wa);
+    pushAt(jc.b, jc.dynB, vb, wb);
+    if (withJoints && jc.dynA) va += coupling.dv[jc.a], wa += coupling.dw[jc.a];
+    if (withJoints && jc.dynB) vb += coupling.dv[jc.b], wb += coupling.dw[jc.b];
+    const JointRow& row = jc.block[i];
+    return toDouble(row.lin).dot(vb - va) + toDouble(row.angB).dot(wb) - toDouble(row.angA).dot(wa);
+  };
+  // g = J M⁻¹ R_rᵀ, then x = K⁻¹ g in the tree's own factors.
+  double largest = 0.0;
+  for (uint32_t e = 0; e < tree.size(); ++e) {
+    const JointConstraint& jc = coupling.joints[tree.jointAt(e)];
+    double* g = tree.rowsOf(e);
+    for (int i = 0; i < jc.blockRows; ++i) {
+      g[i] = rowVelocity(jc, i, false);
+      largest = std::max(largest, std::fabs(g[i]));
+    }
+  }
+  tree.solveRows();
+  // −M⁻¹ Jᵀ x: what the joints' impulses take back.
+  for (uint32_t e = 0; e < tree.size(); ++e) {
+    const JointConstraint& jc = coupling.joints[tree.jointAt(e)];
+    const double* x = tree.rowsOf(e);
+    Vec3d P = Vec3d::Zero(), angA = Vec3d::Zero(), angB = Vec3d::Zero();
+    for (int i = 0; i < jc.blockRows; ++i) {
+      P += x[i] * toDouble(jc.block[i].lin);
+      angA += x[i] * toDouble(jc.block[i].angA);
+      angB += x[i] * toDouble(jc.block[i].angB);
+    }
+    if (jc.dynA) {
+      coupling.dv[jc.a] += double(bodies.invMass[jc.a]) * P;
+      coupling.dw[jc.a] += bodies.invInertiaWorld[jc.a].cast<double>() * angA;
+    }
+    if (jc.dynB) {
+      coupling.dv[jc.b] -= double(bodies.invMass[jc.b]) * P;
+      coupling.dw[jc.b] -= bodies.invInertiaWorld[jc.b].cast<double>() * angB;
+    }
+  }
+  // The answer holds the joints when the tree's factor is sound. Where it kept nearly redundant
+  // rows, or let go of rows that were not quite redundant (a bridge hinged to a post at each end, a
+  // ragdoll's limbs), it leaves the rows moving as fast as the push itself, and the joints' answer
+  // to the rounds' impulses (solved in float) is far from the factored one.
+  double moving = 0.0;
+  for (uint32_t e = 0; e < tree.size(); ++e) {
+    const JointConstraint& jc = coupling.joints[tree.jointAt(e)];
+    for (int i = 0; i < jc.blockRows; ++i) moving = std::max(moving, std::fabs(rowVelocity(jc, i, true)));
+  }
+  return moving <= kJointHoldTolerance * largest;
+}
+
+double rowAtResponse(const JointCoupling& coupling, const ContactConstraint& c, const ChainLink& link, int q) {
+  const Vec3d n = toDouble(c.normal.row(0));
+  double v = 0.0;
+  if (c.dynA) v -= double(link.lin[q]) * n.dot(coupling.dv[c.a]) + toDouble(link.angA[q]).dot(coupling.dw[c.a]);
+  if (c.dynB) v += double(link.lin[q]) * n.dot(coupling.dv[c.b]) + toDouble(link.angB[q]).dot(coupling.dw[c.b]);
+  return v;
+}
+
+void clearJointResponse(const JointCoupling& coupling) {
+  for (uint32_t j = 0; j < coupling.jointCount; ++j) {
+    const JointConstraint& jc = coupling.joints[j];
+    if (jc.dynA) coupling.dv[jc.a].setZero(), coupling.dw[jc.a].setZero();
+    if (jc.dynB) coupling.dv[jc.b].setZero(), coupling.dw[jc.b].setZero();
+  }
+}
+
+namespace {
+
+// Zeroes the noted change of every body that can have one: the joints' and the contacts' bodies.
+void clearChange(const JointCoupling& coupling) {
+  for (uint32_t j = 0; j < coupling.jointCount; ++j) {
+    const JointConstraint& jc = coupling.joints[j];
+    if (jc.dynA) coupling.changeV[jc.a].setZero(), coupling.changeW[jc.a].setZero();
+    if (jc.dynB) coupling.changeV[jc.b].setZero(), coupling.changeW[jc.b].setZero();
+  }
+  for (uint32_t j = 0; j < coupling.contactCount; ++j) {
+    const ContactConstraint& c = coupling.contacts[j];
+    if (c.dynA) coupling.changeV[c.a].setZero(), coupling.changeW[c.a].setZero();
+    if (c.dynB) coupling.changeV[c.b].setZero(), coupling.changeW[c.b].setZero();
+  }
+}
+
+}  // namespace
+
+void addContactChange(const JointCoupling& coupling, const ContactConstraint& c, const float* applied) {
+  Vec3d P = Vec3d::Zero(), turnA = Vec3d::Zero(), turnB = Vec3d::Zero();
+  for (int i = 0; i < c.count; ++i) {
+    P += double(applied[i]) * toDouble(c.normal.row(i));
+    turnA += double(applied[i]) * toDouble(c.iAn.row(i));
+    turnB += double(applied[i]) * toDouble(c.iBn.row(i));
+  }
+  if (c.dynA) {
+    coupling.changeV[c.a] -= double(c.invMassA) * P;
+    coupling.changeW[c.a] -= turnA;
+  }
+  if (c.dynB) {
+    coupling.changeV[c.b] += double(c.invMassB) * P;
+    coupling.changeW[c.b] += turnB;
+  }
+}
+
+void addBodyChange(const JointCoupling& coupling, uint32_t body, const Vec3& dv, const Vec3& dw) {
+  coupling.changeV[body] += toDouble(dv);
+  coupling.changeW[body] += toDouble(dw);
+}
+
+void holdJointChange(BodyStore& bodies, const JointCoupling& coupling) {
+  JointTree& tree = *coupling.tree;
+  auto change = [&](uint32_t body, bool dynamic, bool angular) -> Vec3d {
+    if (!dynamic) return Vec3d::Zero();
+    return angular ? coupling.changeW[body] : coupling.changeV[body];
+  };
+  for (uint32_t e = 0; e < tree.size(); ++e) {
+    const JointConstraint& jc = coupling.joints[tree.jointAt(e)];
+    const Vec3d va = change(jc.a, jc.dynA, false), wa = change(jc.a, jc.dynA, true);
+    const Vec3d vb = change(jc.b, jc.dynB, false), wb = change(jc.b, jc.dynB, true);
+    double* g = tree.rowsOf(e);
+    for (int i = 0; i < jc.blockRows; ++i) {
+      const JointRow& row = jc.block[i];
+      g[i] = -(toDouble(row.lin).dot(vb - va) + toDouble(row.angB).dot(wb) - toDouble(row.angA).dot(wa));
+    }
+  }
+  tree.solveRows();
+  // Applied as JointTree::solve applies its impulses.
+  for (uint32_t e = 0; e < tree.size(); ++e) {
+    JointConstraint& jc = coupling.joints[tree.jointAt(e)];
+    const double* x = tree.rowsOf(e);
+    Vec3 P = Vec3::Zero(), angA = Vec3::Zero(), angB = Vec3::Zero();
+    for (int i = 0; i < jc.blockRows; ++i) {
+      const float l = float(x[i]);
+      jc.blockImpulse[i] += l;
+      P += l * jc.block[i].lin;
+      angA += l * jc.block[i].iAngA;
+      angB += l * jc.block[i].iAngB;
+    }
+    if (jc.dynA) {
+      bodies.v[jc.a] -= jc.invMassA * P;
+      bodies.w[jc.a] -= angA;
+    }
+    if (jc.dynB) {
+      bodies.v[jc.b] += jc.invMassB * P;
+      bodies.w[jc.b] += angB;
+    }
+  }
+  clearChange(coupling);
+}
+
+bool jointsCarryContacts(const BodyStore& bodies, const JointCoupling& coupling, const ContactConstraint* cs,
+                         const ChainLink* links, uint32_t n, float ratio) {
+  bool carried = false;
+  for (uint32_t j = 0; j < n; ++j)
+    for (int r = 0; r < links[j].rank; ++r) {
+      const double free = links[j].diag[r][r];
+      const bool holds = jointResponse(bodies, coupling, cs[j], links[j], r);
+      const double through = free + rowAtResponse(coupling, cs[j], links[j], r);
+      clearJointResponse(coupling);
+      if (!holds) return false;  // the tree's factor cannot carry the contacts' rows
+      // A row the joints hold (almost) still shares its load with them in any proportion: a plank
+      // resting on a fulcrum right under its hinge. Solved together, the split's impulses grew to
+      // thousands of N s a step, warm started, and locked the plank or threw its load off it.
+      if (!(through > kJointHeldRow * free)) return false;
+      carried |= r == 0 && free >= double(ratio) * through;
+    }
+  return carried;
+}
+
+}  // namespace haif
