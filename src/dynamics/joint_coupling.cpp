@@ -206,21 +206,32 @@ void holdJointChange(BodyStore& bodies, const JointCoupling& coupling) {
 
 bool jointsCarryContacts(const BodyStore& bodies, const JointCoupling& coupling, const ContactConstraint* cs,
                          const ChainLink* links, uint32_t n, float ratio) {
+  // How much row r of link j moves through the joints, as a share of what it moves on its own
+  // bodies; negative: the tree's factor cannot carry the contacts' rows.
+  auto share = [&](uint32_t j, int r) {
+    const double free = links[j].diag[r][r];
+    const bool holds = jointResponse(bodies, coupling, cs[j], links[j], r);
+    const double through = free + rowAtResponse(coupling, cs[j], links[j], r);
+    clearJointResponse(coupling);
+    return holds && free > 0.0 ? through / free : -1.0;
+  };
+  // First whether any force row is carried (most islands with joints have none: one solve a link).
   bool carried = false;
+  for (uint32_t j = 0; j < n && !carried; ++j) {
+    const double s = share(j, 0);
+    if (s < 0.0) return false;
+    carried = s * double(ratio) <= 1.0;
+  }
+  if (!carried) return false;
+  // Then that no row is held by the joints (almost) still: it shares its load with them in any
+  // proportion (a plank resting on a fulcrum right under its hinge). Solved together, the split's
+  // impulses grew to thousands of N s a step, warm started, and locked the plank or threw its load.
   for (uint32_t j = 0; j < n; ++j)
     for (int r = 0; r < links[j].rank; ++r) {
-      const double free = links[j].diag[r][r];
-      const bool holds = jointResponse(bodies, coupling, cs[j], links[j], r);
-      const double through = free + rowAtResponse(coupling, cs[j], links[j], r);
-      clearJointResponse(coupling);
-      if (!holds) return false;  // the tree's factor cannot carry the contacts' rows
-      // A row the joints hold (almost) still shares its load with them in any proportion: a plank
-      // resting on a fulcrum right under its hinge. Solved together, the split's impulses grew to
-      // thousands of N s a step, warm started, and locked the plank or threw its load off it.
-      if (!(through > kJointHeldRow * free)) return false;
-      carried |= r == 0 && free >= double(ratio) * through;
+      const double s = share(j, r);
+      if (!(s > kJointHeldRow)) return false;
     }
-  return carried;
+  return true;
 }
 
 }  // namespace haif
