@@ -115,23 +115,20 @@ double rowAtResponse(const JointCoupling& coupling, const ContactConstraint& c, 
   return v;
 }
 
-void clearJointResponse(const JointCoupling& coupling) {
+namespace {
+
+// Zeroes a per-body pair of scratch arrays at the joints' moving bodies.
+void zeroAtJoints(const JointCoupling& coupling, Vec3d* v, Vec3d* w) {
   for (uint32_t j = 0; j < coupling.jointCount; ++j) {
     const JointConstraint& jc = coupling.joints[j];
-    if (jc.dynA) coupling.dv[jc.a].setZero(), coupling.dw[jc.a].setZero();
-    if (jc.dynB) coupling.dv[jc.b].setZero(), coupling.dw[jc.b].setZero();
+    if (jc.dynA) v[jc.a].setZero(), w[jc.a].setZero();
+    if (jc.dynB) v[jc.b].setZero(), w[jc.b].setZero();
   }
 }
 
-namespace {
-
 // Zeroes the noted change of every body that can have one: the joints' and the contacts' bodies.
 void clearChange(const JointCoupling& coupling) {
-  for (uint32_t j = 0; j < coupling.jointCount; ++j) {
-    const JointConstraint& jc = coupling.joints[j];
-    if (jc.dynA) coupling.changeV[jc.a].setZero(), coupling.changeW[jc.a].setZero();
-    if (jc.dynB) coupling.changeV[jc.b].setZero(), coupling.changeW[jc.b].setZero();
-  }
+  zeroAtJoints(coupling, coupling.changeV, coupling.changeW);
   for (uint32_t j = 0; j < coupling.contactCount; ++j) {
     const ContactConstraint& c = coupling.contacts[j];
     if (c.dynA) coupling.changeV[c.a].setZero(), coupling.changeW[c.a].setZero();
@@ -140,6 +137,8 @@ void clearChange(const JointCoupling& coupling) {
 }
 
 }  // namespace
+
+void clearJointResponse(const JointCoupling& coupling) { zeroAtJoints(coupling, coupling.dv, coupling.dw); }
 
 void addContactChange(const JointCoupling& coupling, const ContactConstraint& c, const float* applied) {
   Vec3d P = Vec3d::Zero(), turnA = Vec3d::Zero(), turnB = Vec3d::Zero();
@@ -180,27 +179,7 @@ void holdJointChange(BodyStore& bodies, const JointCoupling& coupling) {
     }
   }
   tree.solveRows();
-  // Applied as JointTree::solve applies its impulses.
-  for (uint32_t e = 0; e < tree.size(); ++e) {
-    JointConstraint& jc = coupling.joints[tree.jointAt(e)];
-    const double* x = tree.rowsOf(e);
-    Vec3 P = Vec3::Zero(), angA = Vec3::Zero(), angB = Vec3::Zero();
-    for (int i = 0; i < jc.blockRows; ++i) {
-      const float l = float(x[i]);
-      jc.blockImpulse[i] += l;
-      P += l * jc.block[i].lin;
-      angA += l * jc.block[i].iAngA;
-      angB += l * jc.block[i].iAngB;
-    }
-    if (jc.dynA) {
-      bodies.v[jc.a] -= jc.invMassA * P;
-      bodies.w[jc.a] -= angA;
-    }
-    if (jc.dynB) {
-      bodies.v[jc.b] += jc.invMassB * P;
-      bodies.w[jc.b] += angB;
-    }
-  }
+  tree.applyRows(bodies, coupling.joints);
   clearChange(coupling);
 }
 

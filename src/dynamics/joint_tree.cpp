@@ -309,7 +309,12 @@ float JointTree::solve(BodyStore& bodies, JointConstraint* js, bool useBias) {
     }
   }
   solveInPlace();
-  for (uint32_t e = 0; e < n; ++e) {
+  applyRows(bodies, js);
+  return residual;
+}
+
+void JointTree::applyRows(BodyStore& bodies, JointConstraint* js) const {
+  for (uint32_t e = 0; e < size(); ++e) {
     JointConstraint& c = js[order_[e].c];
     const double* x = &rhs_[kJointBlockRows * e];
     Vec3 P = Vec3::Zero(), angA = Vec3::Zero(), angB = Vec3::Zero();
@@ -329,7 +334,6 @@ float JointTree::solve(BodyStore& bodies, JointConstraint* js, bool useBias) {
       bodies.w[c.b] += angB;
     }
   }
-  return residual;
 }
 
 void JointTree::project(BodyStore& bodies, const JointConstraint* js) {

@@ -41,6 +41,8 @@ class JointTree {
   uint32_t jointAt(uint32_t e) const { return order_[e].c; }
   double* rowsOf(uint32_t e) { return &rhs_[kJointBlockRows * e]; }
   void solveRows() { solveInPlace(); }
+  /// Adds the rows (as solved) to the joints' impulses and applies them to the bodies, as solve() does.
+  void applyRows(BodyStore& bodies, JointConstraint* js) const;
 
  private:
   struct Block {
