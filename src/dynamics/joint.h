@@ -68,6 +68,10 @@ struct Joint {
   float blockImpulse[kJointBlockRows] = {};  ///< accumulated impulses (warm start), row meaning fixed per type
   float extraImpulse[kJointExtraRows] = {};
   bool broken = false;
+  /// Distance joint with min < max (a rope): this step its max bound is an equality row that may only
+  /// pull (solved with the tree), not a limit row (updateTautness).
+  bool taut = false;
+  bool inTree = false;  ///< last step its equality rows were solved by the island's joint tree
   Vec3 lastForce = Vec3::Zero();   ///< N: constraint force on B during the last step
   Vec3 lastTorque = Vec3::Zero();  ///< N m
 };

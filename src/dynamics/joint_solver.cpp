@@ -23,6 +23,8 @@ namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr double kRedundantPivot = 1e-5;  // relative to the largest diagonal entry
+constexpr float kMinStiffLength = 1e-3f;   // m: a shorter distance joint has no direction to turn
+constexpr float kBeadArm = 0.25f;          // an anchor within this fraction of the length from the centre
 
 inline Transform transformOf(const BodyStore& b, uint32_t i) { return i == kWorldBody ? Transform{} : b.xf[i]; }
 
@@ -141,7 +143,7 @@ struct RowBuilder {
 /// Inverse of the block's effective mass J M^-1 J^T, in double precision.
 void invertBlock(const RowBuilder& rb, JointConstraint& jc) {
   const int m = jc.blockRows;
-  double K[kJointBlockRows * kJointBlockRows], inv[kJointBlockRows * kJointBlockRows];
+  double K[kJointBlockRows * kJointBlockRows] = {}, inv[kJointBlockRows * kJointBlockRows];
   for (int i = 0; i < m; ++i)
     for (int j = 0; j <= i; ++j) K[i * m + j] = K[j * m + i] = rb.k(jc.block[i], jc.block[j]);
   double maxDiag = 0.0;
@@ -230,12 +232,22 @@ float jointPosition(const BodyStore& bodies, const JointDef& d) {
   return 0.0f;
 }
 
-void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* stiffness) {
+void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* angular, float* linear) {
   const float f = j.lastForce.norm();
   if (j.broken || !(f > 0.0f)) return;
   const JointDef& d = j.def;
-  if (d.bodyA != kWorldBody) stiffness[d.bodyA] += f * (bodies.xf[d.bodyA].rotate(d.localAnchorA)).norm();
-  if (d.bodyB != kWorldBody) stiffness[d.bodyB] += f * (bodies.xf[d.bodyB].rotate(d.localAnchorB)).norm();
+  if (d.bodyA != kWorldBody) angular[d.bodyA] += f * (bodies.xf[d.bodyA].rotate(d.localAnchorA)).norm();
+  if (d.bodyB != kWorldBody) angular[d.bodyB] += f * (bodies.xf[d.bodyB].rotate(d.localAnchorB)).norm();
+  if (d.type != JointType::Distance || !j.inTree) return;
+  const JointGeometry g = geometryOf(bodies, d);
+  const float len = (g.pB - g.pA).norm();
+  if (!(len > kMinStiffLength)) return;
+  // Only at a body held near its centre (a bead): where the anchor has a lever arm, turning the body
+  // moves the anchor too, and a mass added to its translation alone shifts the solve's response onto
+  // its rotation (a plank chain on 6 cm rods tore by 2 m).
+  const float arm = kBeadArm * len;
+  if (d.bodyA != kWorldBody && g.rA.norm() <= arm) linear[d.bodyA] += f / len;
+  if (d.bodyB != kWorldBody && g.rB.norm() <= arm) linear[d.bodyB] += f / len;
 }
 
 void stiffenInertia(BodyStore& bodies, uint32_t body, float stiffness, float dt) {
@@ -243,6 +255,84 @@ void stiffenInertia(BodyStore& bodies, uint32_t body, float stiffness, float dt)
   if (!(k > 0.0f) || bodies.kind[body] != BodyKind::Dynamic) return;
   const Mat3 I = bodies.invInertiaWorld[body].inverse();
   bodies.invInertiaWorld[body] = (I + k * Mat3::Identity()).inverse();
+}
+
+void stiffenMass(BodyStore& bodies, uint32_t body, float stiffness, float dt) {
+  const float k = stiffness * dt * dt;
+  if (!(k > 0.0f) || bodies.kind[body] != BodyKind::Dynamic) return;
+  bodies.invMass[body] = 1.0f / (bodies.mass[body] + k);
+}
+
+void restoreMass(BodyStore& bodies, uint32_t body) {
+  if (bodies.kind[body] == BodyKind::Dynamic && bodies.mass[body] > 0.0f) bodies.invMass[body] = 1.0f / bodies.mass[body];
+}
+
+void mergeParallelJoints(JointConstraint* js, uint32_t n, std::vector<std::pair<uint64_t, uint32_t>>& order) {
+  order.clear();
+  for (uint32_t c = 0; c < n; ++c)
+    if (js[c].blockRows > 0 && js[c].dynA && js[c].dynB)
+      order.emplace_back(uint64_t(std::min(js[c].a, js[c].b)) << 32 | std::max(js[c].a, js[c].b), c);
+  std::sort(order.begin(), order.end());  // by pair, then joint index: the first joint of a pair hosts
+  for (size_t i = 0; i < order.size();) {
+    size_t e = i + 1;
+    while (e < order.size() && order[e].first == order[i].first) ++e;
+    JointConstraint& host = js[order[i].second];
+    bool merged = false;
+    for (size_t k = i + 1; k < e; ++k) {
+      JointConstraint& c = js[order[k].second];
+      if (host.blockRows + c.blockRows > kJointBlockRows) continue;
+      c.host = int32_t(order[i].second);
+      c.hostRow = int8_t(host.blockRows);
+      c.hostReversed = c.a != host.a;
+      for (int r = 0; r < c.blockRows; ++r) {
+        JointRow row = c.block[r];
+        if (c.hostReversed) {  // the same velocity seen from the host's A and B (RowBuilder::k's terms)
+          std::swap(row.angA, row.angB);
+          std::swap(row.iAngA, row.iAngB);
+          row.lin = -row.lin;
+          row.angA = -row.angA;
+          row.angB = -row.angB;
+          row.iAngA = -row.iAngA;
+          row.iAngB = -row.iAngB;
+        }
+        const int h = host.blockRows++;
+        host.block[h] = row;
+        host.blockError[h] = c.blockError[r];
+        host.blockImpulse[h] = c.blockImpulse[r];
+        if (c.pullRows >> r & 1) host.pullRows = uint8_t(host.pullRows | 1u << h);
+      }
+      c.blockRows = 0;
+      c.pullRows = 0;
+      merged = true;
+    }
+    if (merged) {  // the host's own soft solve (outside a tree) needs the inverse of its grown block
+      RowBuilder rb;
+      rb.mA = host.invMassA;
+      rb.mB = host.invMassB;
+      invertBlock(rb, host);
+    }
+    i = e;
+  }
+}
+
+void updateTautness(const BodyStore& bodies, Joint& j, float dt) {
+  const JointDef& d = j.def;
+  if (d.type != JointType::Distance || !(d.minDistance < d.maxDistance)) {
+    j.taut = false;
+    return;
+  }
+  const JointGeometry g = geometryOf(bodies, d);
+  const Vec3 sep = g.pB - g.pA;
+  const float len = sep.norm();
+  if (!(len > 1e-6f)) {
+    j.taut = false;
+    return;
+  }
+  auto pointVelocity = [&](uint32_t body, const Vec3& r) -> Vec3 {
+    return body == kWorldBody ? Vec3::Zero() : Vec3(bodies.v[body] + bodies.w[body].cross(r));
+  };
+  const float stretching = (sep / len).dot(pointVelocity(d.bodyB, g.rB) - pointVelocity(d.bodyA, g.rA));
+  j.taut = len + dt * stretching > d.maxDistance - kRopeTautSlop;
 }
 
 void prepareJoint(const BodyStore& bodies, const Joint& j, uint32_t ji, const SolverParams& p,
@@ -254,6 +344,10 @@ void prepareJoint(const BodyStore& bodies, const Joint& j, uint32_t ji, const So
   jc.joint = ji;
   jc.dynA = a != kWorldBody && bodies.kind[a] == BodyKind::Dynamic && !bodies.asleep[a];
   jc.dynB = b != kWorldBody && bodies.kind[b] == BodyKind::Dynamic && !bodies.asleep[b];
+  jc.pullRows = 0;
+  jc.host = -1;
+  jc.hostRow = 0;
+  jc.hostReversed = false;
   RowBuilder rb;
   rb.mA = jc.invMassA = jc.dynA ? bodies.invMass[a] : 0.0f;
   rb.mB = jc.invMassB = jc.dynB ? bodies.invMass[b] : 0.0f;
@@ -315,12 +409,18 @@ void prepareJoint(const BodyStore& bodies, const Joint& j, uint32_t ji, const So
       if (d.minDistance == d.maxDistance && len > 1e-6f) {
         jc.block[m] = rb.linear(sep / len, g.rA, g.rB);
         C[m++] = len - d.minDistance;
+      } else if (j.taut && len > 1e-6f) {
+        // A rope within its slop of taut holds its length; stretched, it is pulled back.
+        jc.block[m] = rb.linear(sep / len, g.rA, g.rB);
+        C[m++] = std::max(len - d.maxDistance, 0.0f);
+        jc.pullRows = 1;
       }
       break;
     }
     default: break;
   }
   jc.blockRows = m;
+  jc.ownRows = int8_t(m);
   jc.inTree = false;
   // Soft constraint coefficients (spring-damper solved implicitly): used when the joint is not in a tree.
   const float omega = 2.0f * kPi * std::min(jp.softHertz, 0.5f / p.dt), h = p.dt;
@@ -333,6 +433,8 @@ void prepareJoint(const BodyStore& bodies, const Joint& j, uint32_t ji, const So
     jc.blockError[i] = C[i];
     jc.blockImpulse[i] = p.warmStart ? j.blockImpulse[i] : 0.0f;
   }
+  // A rope's tension carries over between its two forms (one of the two impulses is zero).
+  if (jc.pullRows) jc.blockImpulse[0] = p.warmStart ? std::min(j.blockImpulse[0] - j.extraImpulse[1], 0.0f) : 0.0f;
   if (m > 0) invertBlock(rb, jc);
 
   // Limit and motor rows. A limit is a one-sided row on the distance to it, C >= 0: while C > 0 the
@@ -394,7 +496,10 @@ void prepareJoint(const BodyStore& bodies, const Joint& j, uint32_t ji, const So
       if (d.minDistance < d.maxDistance && len > 1e-6f) {
         const JointRow row = rb.linear(sep / len, g.rA, g.rB);
         if (d.minDistance > 0.0f) addLimit(row, 0, len - d.minDistance);
-        addLimit(rb.negated(row), 1, d.maxDistance - len);
+        if (!j.taut) {
+          addLimit(rb.negated(row), 1, d.maxDistance - len);
+          if (p.warmStart) jc.extraImpulse[e - 1] = std::max(j.extraImpulse[1] - j.blockImpulse[0], 0.0f);
+        }
       }
       break;
     }
@@ -492,6 +597,7 @@ float solveBlock(BodyStore& bodies, JointConstraint& c, float omega, bool useBia
     float dl = 0.0f;
     for (int j = 0; j < m; ++j) dl += c.blockInvK[i * m + j] * rhs[j];
     dl = useBias ? omega * (c.massScale * dl - c.impulseScale * c.blockImpulse[i]) : omega * dl;
+    if (c.pullRows >> i & 1) dl = std::min(c.blockImpulse[i] + dl, 0.0f) - c.blockImpulse[i];
     c.blockImpulse[i] += dl;
     applyRow(c, c.block[i], dl, s);
   }
@@ -508,7 +614,21 @@ float solveJointIteration(BodyStore& bodies, JointConstraint* js, size_t n, Join
   // so that they have the final word in each sweep.
   for (size_t k = 0; k < n; ++k)
     if (js[k].motor) residual = std::max(residual, solveExtraRow(bodies, js[k], 0, omega, useBias));
-  if (tree && tree->size() > 0) residual = std::max(residual, tree->solve(bodies, js, useBias));
+  if (tree && tree->size() > 0) {
+    residual = std::max(residual, tree->solve(bodies, js, useBias));
+    // The tree solves a taut rope as a rod: one that pushed (its ends closing) lets go.
+    for (size_t k = 0; k < n; ++k) {
+      JointConstraint& c = js[k];
+      if (!c.pullRows || !c.inTree) continue;
+      for (int i = 0; i < c.blockRows; ++i)
+        if ((c.pullRows >> i & 1) && c.blockImpulse[i] > 0.0f) {
+          Velocities s = load(bodies, c);
+          applyRow(c, c.block[i], -c.blockImpulse[i], s);
+          storeBack(bodies, c, s);
+          c.blockImpulse[i] = 0.0f;
+        }
+    }
+  }
   for (size_t k = 0; k < n; ++k) {
     JointConstraint& c = js[k];
     if (c.blockRows > 0 && !c.inTree) residual = std::max(residual, solveBlock(bodies, c, omega, useBias));
@@ -523,14 +643,19 @@ void storeJointImpulses(const JointConstraint* js, size_t n, float dt, Joint* jo
   for (size_t k = 0; k < n; ++k) {
     const JointConstraint& c = js[k];
     Joint& j = joints[c.joint];
+    // A joint merged into another (mergeParallelJoints) finds its rows there; the host's own are its first.
+    const JointConstraint& rows = c.host >= 0 ? js[c.host] : c;
+    const int first = c.host >= 0 ? c.hostRow : 0;
+    const float sign = c.hostReversed ? -1.0f : 1.0f;  // the host's force on its B is this one's on its A
+    j.inTree = rows.inTree;
     Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
-    for (int i = 0; i < kJointBlockRows; ++i) j.blockImpulse[i] = i < c.blockRows ? c.blockImpulse[i] : 0.0f;
+    for (int i = 0; i < kJointBlockRows; ++i) j.blockImpulse[i] = i < c.ownRows ? rows.blockImpulse[first + i] : 0.0f;
     for (int i = 0; i < kJointExtraRows; ++i) j.extraImpulse[i] = 0.0f;
     auto accumulate = [&](const JointRow& r, float lambda) {
       if (r.lin.squaredNorm() > 0.0f) force += lambda * r.lin;
       else torque += lambda * r.angB;
     };
-    for (int i = 0; i < c.blockRows; ++i) accumulate(c.block[i], c.blockImpulse[i]);
+    for (int i = 0; i < c.ownRows; ++i) accumulate(rows.block[first + i], sign * rows.blockImpulse[first + i]);
     for (int i = 0; i < c.extraRows; ++i) {
       j.extraImpulse[c.extraSlot[i]] = c.extraImpulse[i];
       accumulate(c.extra[i], c.extraImpulse[i]);

@@ -12,6 +12,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <utility>
+#include <vector>
 
 namespace haif {
 
@@ -44,6 +46,11 @@ struct JointConstraint {
   int extraRows;        // limit/motor rows in use
   bool motor;           // extra row 0 is a motor (solved before the block; limits come after it)
   bool inTree;          // the block is solved by the island's JointTree, not on its own
+  uint8_t pullRows;     // bit i: block row i is a taut rope's length, its impulse stays <= 0 (pulling)
+  int8_t ownRows;       // block rows of its own joint (the first ones; mergeParallelJoints may add more)
+  int32_t host;         // >= 0: its block rows were moved to js[host] (mergeParallelJoints), from row hostRow
+  int8_t hostRow;
+  bool hostReversed;    // the host's bodies are this joint's B and A
   JointRow block[kJointBlockRows];
   float blockInvK[kJointBlockRows * kJointBlockRows];  // (J M^-1 J^T)^-1, row-major, blockRows^2 used
   float blockError[kJointBlockRows];                   // position error C of each row
@@ -61,10 +68,13 @@ struct JointConstraint {
 };
 
 /// Geometric stiffness of the joints at their bodies: for each body, the sum over its joints of the last
-/// step's force times the lever arm (N m). A light link pulled hard along a chain has a rotation mode far
-/// faster than the step (a 100 kg load on 1 kg links: ~200 rad/s at 60 Hz) that the linearised joint rows
-/// meet only a step late, so it spins up and tears the chain. Adds to `stiffness` (per body).
-void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* stiffness);
+/// step's force times the lever arm (N m, `angular`). A light link pulled hard along a chain has a rotation
+/// mode far faster than the step (a 100 kg load on 1 kg links: ~200 rad/s at 60 Hz) that the linearised
+/// joint rows meet only a step late, so it spins up and tears the chain. A distance joint or rope also
+/// turns its direction as its ends move across it: force over length (N/m, `linear`) at both bodies; a
+/// light bead between two taut rods has a sideways mode of sqrt(2 f / (L m)) (a 20 kg load on beads of
+/// 0.2 kg, 0.4 m apart: ~100 rad/s). Adds to both arrays (per body).
+void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* angular, float* linear);
 
 /// Adds h^2 times a body's geometric stiffness to its world inertia for this step's solve (Andrews et
 /// al. 2017, diagonal geometric stiffness): the fast mode is then treated implicitly, damped instead of
@@ -72,6 +82,28 @@ void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* st
 /// the same inertia, or the sweep stops being a projection and pumps energy (crates bounced off a rope
 /// bridge); integration restores the true inertia.
 void stiffenInertia(BodyStore& bodies, uint32_t body, float stiffness, float dt);
+
+/// The same for translation: h^2 times the body's linear geometric stiffness added to its mass (all
+/// directions, as for the inertia) for this step's solve; restoreMass puts the true mass back.
+void stiffenMass(BodyStore& bodies, uint32_t body, float stiffness, float dt);
+void restoreMass(BodyStore& bodies, uint32_t body);
+
+/// A rope (a distance joint with min < max) is taut for this step when its ends' velocities (gravity
+/// included) would leave it within kRopeTautSlop of its length or longer at the end of the step. A rope
+/// hung at exactly its length is taut from the first step: judged slack there, a plank bridge on ropes
+/// fell for one step, jerked and flailed.
+/// A taut rope's length is an equality row that may only pull, solved exactly with the joint tree
+/// (a chain of ropes carrying a load is then as stiff as a chain of rods); a slack one keeps its limit
+/// row. Call before prepareJoint.
+void updateTautness(const BodyStore& bodies, Joint& j, float dt);
+inline constexpr float kRopeTautSlop = 1e-3f;  ///< m
+
+/// Joints between the same two dynamic bodies (the two ropes at each junction of a rope bridge) are one
+/// node of the joint tree: left apart, the second closes a loop, is solved as a soft row beside the
+/// tree's exact one, and the two fought until a plank bridge on paired ropes tore. Moves the equality
+/// rows of each later such joint into the first one's block while they fit (kJointBlockRows); its limit
+/// and motor rows stay its own. `order` is scratch (kept between calls).
+void mergeParallelJoints(JointConstraint* js, uint32_t n, std::vector<std::pair<uint64_t, uint32_t>>& order);
 
 /// Builds the rows of joint `j` (index ji) into `jc`; `time` is the simulated time at the end of the
 /// step (servo motors aim at their trajectory there).

@@ -39,7 +39,8 @@ bool JointTree::sameStructure(const JointConstraint* js, uint32_t n) {
   return same;
 }
 
-void JointTree::build(JointConstraint* js, uint32_t n) {
+void JointTree::build(JointConstraint* js, uint32_t n, bool mergeParallel) {
+  if (mergeParallel) mergeParallelJoints(js, n, parallel_);
   // The structure (which joints form the tree, the elimination order, the cliques) depends only on
   // which bodies each joint ties and how many rows it has. Where that is as at the last build, only
   // the numbers are made again: a 30x30 grid of ball joints spent a fifth of its step finding, each
@@ -417,9 +418,9 @@ void JointTree::solveInPlace() {
 
 void projectJointPositions(BodyStore& bodies, const Joint* joints, const uint32_t* ids, uint32_t n,
                            const SolverParams& p, const JointSolverParams& jp, JointConstraint* scratch,
-                           JointTree& tree) {
+                           JointTree& tree, bool mergeParallel) {
   for (uint32_t j = 0; j < n; ++j) prepareJoint(bodies, joints[ids[j]], ids[j], p, jp, 0.0f, scratch[j]);
-  tree.build(scratch, n);
+  tree.build(scratch, n, mergeParallel);
   // Projecting the tree moves bodies without seeing the joints that close loops: it would open them.
   if (tree.loops() == 0) tree.project(bodies, scratch);
 }

@@ -4,7 +4,9 @@
 // system J M^-1 J^T λ = -(J v + b) factors without fill-in: eliminating the joints body by body from the
 // leaves inwards only ever couples joints that already share a body (the joints at one body form a
 // clique). So each SOR-PGS sweep treats the whole tree as one block, solved in linear time; limits,
-// motors, joints that close a loop and contacts stay ordinary PGS rows around it.
+// motors, slack ropes, joints that close a loop and contacts stay ordinary PGS rows around it. A taut
+// rope is a row of the tree that may only pull, and joints between the same two bodies one node
+// (mergeParallelJoints).
 #pragma once
 
 #include "core/body_store.h"
@@ -20,7 +22,8 @@ class JointTree {
   /// Picks the joints of `js` whose equality blocks form a forest over the dynamic bodies (a joint that
   /// would close a loop is left to the per-joint sweep: its `inTree` stays false), orders them and factors
   /// the system at the prepared rows. Buffers are kept between calls: no allocation once warm.
-  void build(JointConstraint* js, uint32_t n);
+  /// `mergeParallel`: first merge the rows of joints between the same two bodies (mergeParallelJoints).
+  void build(JointConstraint* js, uint32_t n, bool mergeParallel = false);
   /// One exact solve of the tree rows against the current velocities: λ += A^-1 (-(J v + b)), applied
   /// to the bodies. `useBias` false: the relax sweep (no position correction). Returns max |J v + b|.
   float solve(BodyStore& bodies, JointConstraint* js, bool useBias);
@@ -92,6 +95,7 @@ class JointTree {
   void solveInPlace();  // rhs_ <- A^-1 rhs_ with the factors
 
   uint32_t loops_ = 0;
+  std::vector<std::pair<uint64_t, uint32_t>> parallel_;  // mergeParallelJoints' scratch
   std::vector<JointShape> shape_;   // per joint of the last build
   std::vector<uint8_t> inTree_;     // per joint of the last build: its inTree
   std::vector<Incidence> inc_;
@@ -117,6 +121,6 @@ class JointTree {
 /// Joints outside the tree are left to the next step's soft rows.
 void projectJointPositions(BodyStore& bodies, const Joint* joints, const uint32_t* ids, uint32_t n,
                            const SolverParams& p, const JointSolverParams& jp, JointConstraint* scratch,
-                           JointTree& tree);
+                           JointTree& tree, bool mergeParallel);
 
 }  // namespace haif

@@ -307,6 +307,9 @@ class World {
   std::vector<JointConstraint> jointConstraints_;  // solver rows, grouped by island like constraints_
   std::vector<JointTree> jointTrees_;              // per island slot: factorisation buffers, reused
   std::vector<float> jointStiffness_;              // per body, this step (N m)
+  std::vector<float> jointLinearStiffness_;        // per body, this step (N/m): distance joints and ropes
+  PairMap jointedPairs_;                           // joints per pair of bodies (both not the world)
+  bool parallelJoints_ = false;                    // some pair has two joints: merge their rows
   PairMap jointPairs_;  // body pair -> number of unbroken joints that keep the two from colliding
   std::vector<PinnedBody> pins_;          // this step's pinned bodies (findPinnedBodies)
   std::vector<uint8_t> jointsOfBody_;     // findPinnedBodies' scratch: unbroken joints per body (capped)

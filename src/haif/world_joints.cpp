@@ -11,6 +11,13 @@ uint32_t World::addJoint(const JointDef& def) {
   Joint j;
   j.def = def;
   joints_.push_back(j);
+  if (def.bodyA != kWorldBody && def.bodyB != kWorldBody) {
+    // A second joint between the same two bodies: their rows are merged for the tree (mergeParallelJoints).
+    const uint64_t key = PairMap::key(def.bodyA, def.bodyB);
+    const uint32_t n = jointedPairs_.find(key);
+    jointedPairs_.set(key, n == PairMap::kNotFound ? 1u : n + 1u);
+    if (n != PairMap::kNotFound) parallelJoints_ = true;
+  }
   for (uint32_t b : {def.bodyA, def.bodyB})
     if (b != kWorldBody) bodies_.implicitGyro[b] = 1;  // see integratePositions
   if (!def.collideConnected && def.bodyA != kWorldBody && def.bodyB != kWorldBody) {
@@ -105,18 +112,23 @@ void World::breakJoints() {
   }
 }
 
-// Geometric stiffness of loaded joints, added to their bodies' inertia for this step's solve (contacts
-// and joints alike); integration puts the true inertia back.
+// Geometric stiffness of loaded joints, added to their bodies' inertia and mass for this step's solve
+// (contacts and joints alike); integration puts the true inertia back, finishJoints the true mass.
 void World::stiffenJointedBodies() {
   if (!settings_.joints.geometricStiffness) return;
   jointStiffness_.assign(bodyCount(), 0.0f);
-  for (uint32_t ji : islands_.joints) accumulateJointStiffness(bodies_, joints_[ji], jointStiffness_.data());
+  jointLinearStiffness_.assign(bodyCount(), 0.0f);
+  for (uint32_t ji : islands_.joints)
+    accumulateJointStiffness(bodies_, joints_[ji], jointStiffness_.data(), jointLinearStiffness_.data());
   // A pinned body turns about its point by its true inertia there (integratePinned), which reads
   // the solve's velocities as angular momentum about the point: the joint's impulse has no moment
   // about it only if the solve splits it by the true inertia too. Stiffened, a 1 m pendulum of a
   // 5 cm ball (k = m g L dt², 2.7 × its own inertia) lost 0.02 % of its swing's energy a swing.
-  for (const PinnedBody& pin : pins_) jointStiffness_[pin.body] = 0.0f;
-  for (uint32_t i : islands_.bodies) stiffenInertia(bodies_, i, jointStiffness_[i], settings_.dt);
+  for (const PinnedBody& pin : pins_) jointStiffness_[pin.body] = jointLinearStiffness_[pin.body] = 0.0f;
+  for (uint32_t i : islands_.bodies) {
+    stiffenInertia(bodies_, i, jointStiffness_[i], settings_.dt);
+    stiffenMass(bodies_, i, jointLinearStiffness_[i], settings_.dt);
+  }
 }
 
 // Rows of island k's joints, warm started, and its joint tree factorised (when joints are solved as a tree).
@@ -126,29 +138,36 @@ void World::prepareJoints(uint32_t k, const SolverParams& sp) {
   const uint32_t nj = isl.jointCount;
   const uint32_t* ids = islands_.joints.data() + isl.firstJoint;
   const float time = float(stepCount_ + 1) * sp.dt;
-  for (uint32_t j = 0; j < nj; ++j) prepareJoint(bodies_, joints_[ids[j]], ids[j], sp, settings_.joints, time, js[j]);
+  for (uint32_t j = 0; j < nj; ++j) {
+    updateTautness(bodies_, joints_[ids[j]], sp.dt);
+    prepareJoint(bodies_, joints_[ids[j]], ids[j], sp, settings_.joints, time, js[j]);
+  }
   if (sp.warmStart) warmStartJoints(bodies_, js, nj);
-  if (settings_.joints.treeSolve) jointTrees_[k].build(js, nj);
+  if (settings_.joints.treeSolve) jointTrees_[k].build(js, nj, parallelJoints_);
 }
 
 // After the relax sweeps: keep the impulses for the next step, then (the rows being free now) project the
-// tree joints back onto their constraints at the integrated positions.
+// tree joints back onto their constraints at the integrated positions, and give the bodies their true mass.
 void World::finishJoints(uint32_t k) {
   const Island& isl = islands_.islands[k];
   JointConstraint* js = jointConstraints_.data() + isl.firstJoint;
   const uint32_t nj = isl.jointCount;
   storeJointImpulses(js, nj, settings_.dt, joints_.data());
-  if (!settings_.joints.treeSolve || !settings_.joints.postProjection) return;
-  // The projection moves bodies in the same metric as the solve: light loaded links mostly translate.
   const bool stiff = settings_.joints.geometricStiffness;
   const uint32_t* bodies = islands_.bodies.data() + isl.firstBody;
+  if (settings_.joints.treeSolve && settings_.joints.postProjection) {
+    // The projection moves bodies in the same metric as the solve: light loaded links mostly translate.
+    if (stiff)
+      for (uint32_t j = 0; j < isl.bodyCount; ++j)
+        stiffenInertia(bodies_, bodies[j], jointStiffness_[bodies[j]], settings_.dt);
+    projectJointPositions(bodies_, joints_.data(), islands_.joints.data() + isl.firstJoint, nj, solverParams(),
+                          settings_.joints, js, jointTrees_[k], parallelJoints_);
+    if (stiff)
+      for (uint32_t j = 0; j < isl.bodyCount; ++j) bodies_.updateWorldInertia(bodies[j]);
+  }
   if (stiff)
     for (uint32_t j = 0; j < isl.bodyCount; ++j)
-      stiffenInertia(bodies_, bodies[j], jointStiffness_[bodies[j]], settings_.dt);
-  projectJointPositions(bodies_, joints_.data(), islands_.joints.data() + isl.firstJoint, nj, solverParams(),
-                        settings_.joints, js, jointTrees_[k]);
-  if (stiff)
-    for (uint32_t j = 0; j < isl.bodyCount; ++j) bodies_.updateWorldInertia(bodies[j]);
+      if (jointLinearStiffness_[bodies[j]] > 0.0f) restoreMass(bodies_, bodies[j]);
 }
 
 void World::measureJointErrors() {
