@@ -73,6 +73,7 @@ struct Joint {
   bool taut = false;
   bool inTree = false;  ///< last step its equality rows were solved by the island's joint tree
   Vec3 lastForce = Vec3::Zero();   ///< N: constraint force on B during the last step
+  float heldForce = 0.0f;          ///< N: |lastForce|, let fall by at most JointSolverParams::stiffnessHold a step
   Vec3 lastTorque = Vec3::Zero();  ///< N m
 };
 

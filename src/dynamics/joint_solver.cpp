@@ -233,7 +233,7 @@ float jointPosition(const BodyStore& bodies, const JointDef& d) {
 }
 
 void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* angular, float* linear) {
-  const float f = j.lastForce.norm();
+  const float f = j.heldForce;
   if (j.broken || !(f > 0.0f)) return;
   const JointDef& d = j.def;
   if (d.bodyA != kWorldBody) angular[d.bodyA] += f * (bodies.xf[d.bodyA].rotate(d.localAnchorA)).norm();
@@ -638,7 +638,7 @@ float solveJointIteration(BodyStore& bodies, JointConstraint* js, size_t n, Join
   return residual;
 }
 
-void storeJointImpulses(const JointConstraint* js, size_t n, float dt, Joint* joints) {
+void storeJointImpulses(const JointConstraint* js, size_t n, float dt, float stiffnessHold, Joint* joints) {
   const float invDt = 1.0f / dt;
   for (size_t k = 0; k < n; ++k) {
     const JointConstraint& c = js[k];
@@ -662,6 +662,7 @@ void storeJointImpulses(const JointConstraint* js, size_t n, float dt, Joint* jo
     }
     j.lastForce = invDt * force;
     j.lastTorque = invDt * torque;
+    j.heldForce = std::max(j.lastForce.norm(), stiffnessHold * j.heldForce);
   }
 }
 

@@ -28,6 +28,10 @@ struct JointSolverParams {
   /// blow a loop apart.
   float softHertz = 30.0f;
   float softDampingRatio = 1.0f;
+  /// The force behind a joint's geometric stiffness falls by at most this factor a step (Joint::heldForce).
+  /// From the last step's force alone, the stiffness of a bridge under crates flipped with its force,
+  /// high one step and low the next, and the bridge tore at 16-64 sweeps.
+  float stiffnessHold = 0.97f;
 };
 
 /// One Jacobian row with I^-1 times its angular parts.
@@ -67,8 +71,8 @@ struct JointConstraint {
   int8_t extraSlot[kJointExtraRows];  // which Joint::extraImpulse entry a row warm-starts from
 };
 
-/// Geometric stiffness of the joints at their bodies: for each body, the sum over its joints of the last
-/// step's force times the lever arm (N m, `angular`). A light link pulled hard along a chain has a rotation
+/// Geometric stiffness of the joints at their bodies: for each body, the sum over its joints of their
+/// force (Joint::heldForce: the last step's, or more while it falls) times the lever arm (N m, `angular`). A light link pulled hard along a chain has a rotation
 /// mode far faster than the step (a 100 kg load on 1 kg links: ~200 rad/s at 60 Hz) that the linearised
 /// joint rows meet only a step late, so it spins up and tears the chain. A distance joint or rope also
 /// turns its direction as its ends move across it: force over length (N/m, `linear`) at both bodies; a
@@ -125,7 +129,7 @@ float solveJointIteration(BodyStore& bodies, JointConstraint* js, size_t n, clas
                           bool useBias);
 
 /// Writes accumulated impulses back to the joints and records their force and torque (impulse / dt).
-void storeJointImpulses(const JointConstraint* js, size_t n, float dt, Joint* joints);
+void storeJointImpulses(const JointConstraint* js, size_t n, float dt, float stiffnessHold, Joint* joints);
 
 /// Position-level error of a joint at the bodies' current transforms (docs/metrics.md, "Joint error").
 JointError measureJointError(const BodyStore& bodies, const Joint& j);

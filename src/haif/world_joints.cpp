@@ -152,7 +152,7 @@ void World::finishJoints(uint32_t k) {
   const Island& isl = islands_.islands[k];
   JointConstraint* js = jointConstraints_.data() + isl.firstJoint;
   const uint32_t nj = isl.jointCount;
-  storeJointImpulses(js, nj, settings_.dt, joints_.data());
+  storeJointImpulses(js, nj, settings_.dt, settings_.joints.stiffnessHold, joints_.data());
   const bool stiff = settings_.joints.geometricStiffness;
   const uint32_t* bodies = islands_.bodies.data() + isl.firstBody;
   if (settings_.joints.treeSolve && settings_.joints.postProjection) {
