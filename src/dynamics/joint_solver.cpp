@@ -270,7 +270,7 @@ void restoreMass(BodyStore& bodies, uint32_t body) {
 void mergeParallelJoints(JointConstraint* js, uint32_t n, std::vector<std::pair<uint64_t, uint32_t>>& order) {
   order.clear();
   for (uint32_t c = 0; c < n; ++c)
-    if (js[c].blockRows > 0 && js[c].dynA && js[c].dynB)
+    if (js[c].blockRows == 1 && js[c].dynA && js[c].dynB)
       order.emplace_back(uint64_t(std::min(js[c].a, js[c].b)) << 32 | std::max(js[c].a, js[c].b), c);
   std::sort(order.begin(), order.end());  // by pair, then joint index: the first joint of a pair hosts
   for (size_t i = 0; i < order.size();) {

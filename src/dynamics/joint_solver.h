@@ -102,11 +102,14 @@ void restoreMass(BodyStore& bodies, uint32_t body);
 void updateTautness(const BodyStore& bodies, Joint& j, float dt);
 inline constexpr float kRopeTautSlop = 1e-3f;  ///< m
 
-/// Joints between the same two dynamic bodies (the two ropes at each junction of a rope bridge) are one
-/// node of the joint tree: left apart, the second closes a loop, is solved as a soft row beside the
-/// tree's exact one, and the two fought until a plank bridge on paired ropes tore. Moves the equality
-/// rows of each later such joint into the first one's block while they fit (kJointBlockRows); its limit
-/// and motor rows stay its own. `order` is scratch (kept between calls).
+/// Single-row joints (rods, taut ropes) between the same two dynamic bodies (the two ropes at each
+/// junction of a rope bridge) are one node of the joint tree: left apart, the second closes a loop, is
+/// solved as a soft row beside the tree's exact one, and the two fought until a plank bridge on paired
+/// rods tore. Moves the row of each later such joint into the first one's block (up to
+/// kJointBlockRows); its limit and motor rows stay its own. Pairs of larger joints (two ball joints or
+/// hinges at a plank's edges) share rows that say the same (a redundant block) and stay as they were:
+/// merged, a bridge of paired ball joints gained energy under other compiler flags (ThreadSanitizer's
+/// build). `order` is scratch (kept between calls).
 void mergeParallelJoints(JointConstraint* js, uint32_t n, std::vector<std::pair<uint64_t, uint32_t>>& order);
 
 /// Builds the rows of joint `j` (index ji) into `jc`; `time` is the simulated time at the end of the
