@@ -69,7 +69,7 @@ struct Joint {
   float extraImpulse[kJointExtraRows] = {};
   bool broken = false;
   /// Distance joint with min < max (a rope): this step its max bound is an equality row that may only
-  /// pull (solved with the tree), not a limit row (updateTautness).
+  /// pull (solved with the tree), not a limit row (prepareJointForStep).
   bool taut = false;
   bool inTree = false;  ///< last step its equality rows were solved by the island's joint tree
   Vec3 lastForce = Vec3::Zero();   ///< N: constraint force on B during the last step

@@ -130,7 +130,7 @@ struct RowBuilder {
   double k(const JointRow& x, const JointRow& y) const {
     return double(mA + mB) * double(x.lin.dot(y.lin)) + double(x.angA.dot(y.iAngA)) + double(x.angB.dot(y.iAngB));
   }
-  JointRow negated(JointRow r) const {
+  static JointRow negated(JointRow r) {
     r.lin = -r.lin;
     r.angA = -r.angA;
     r.angB = -r.angB;
@@ -236,18 +236,19 @@ void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* an
   const float f = j.heldForce;
   if (j.broken || !(f > 0.0f)) return;
   const JointDef& d = j.def;
-  if (d.bodyA != kWorldBody) angular[d.bodyA] += f * (bodies.xf[d.bodyA].rotate(d.localAnchorA)).norm();
-  if (d.bodyB != kWorldBody) angular[d.bodyB] += f * (bodies.xf[d.bodyB].rotate(d.localAnchorB)).norm();
+  const Transform xa = transformOf(bodies, d.bodyA), xb = transformOf(bodies, d.bodyB);
+  const Vec3 rA = xa.rotate(d.localAnchorA), rB = xb.rotate(d.localAnchorB);
+  if (d.bodyA != kWorldBody) angular[d.bodyA] += f * rA.norm();
+  if (d.bodyB != kWorldBody) angular[d.bodyB] += f * rB.norm();
   if (d.type != JointType::Distance || !j.inTree) return;
-  const JointGeometry g = geometryOf(bodies, d);
-  const float len = (g.pB - g.pA).norm();
+  const float len = ((xb.p + rB) - (xa.p + rA)).norm();
   if (!(len > kMinStiffLength)) return;
   // Only at a body held near its centre (a bead): where the anchor has a lever arm, turning the body
   // moves the anchor too, and a mass added to its translation alone shifts the solve's response onto
   // its rotation (a plank chain on 6 cm rods tore by 2 m).
   const float arm = kBeadArm * len;
-  if (d.bodyA != kWorldBody && g.rA.norm() <= arm) linear[d.bodyA] += f / len;
-  if (d.bodyB != kWorldBody && g.rB.norm() <= arm) linear[d.bodyB] += f / len;
+  if (d.bodyA != kWorldBody && rA.norm() <= arm) linear[d.bodyA] += f / len;
+  if (d.bodyB != kWorldBody && rB.norm() <= arm) linear[d.bodyB] += f / len;
 }
 
 void stiffenInertia(BodyStore& bodies, uint32_t body, float stiffness, float dt) {
@@ -289,11 +290,7 @@ void mergeParallelJoints(JointConstraint* js, uint32_t n, std::vector<std::pair<
         if (c.hostReversed) {  // the same velocity seen from the host's A and B (RowBuilder::k's terms)
           std::swap(row.angA, row.angB);
           std::swap(row.iAngA, row.iAngB);
-          row.lin = -row.lin;
-          row.angA = -row.angA;
-          row.angB = -row.angB;
-          row.iAngA = -row.iAngA;
-          row.iAngB = -row.iAngB;
+          row = RowBuilder::negated(row);
         }
         const int h = host.blockRows++;
         host.block[h] = row;
@@ -315,13 +312,14 @@ void mergeParallelJoints(JointConstraint* js, uint32_t n, std::vector<std::pair<
   }
 }
 
-void updateTautness(const BodyStore& bodies, Joint& j, float dt) {
+namespace {
+
+void updateTautness(const BodyStore& bodies, Joint& j, const JointGeometry& g, float dt) {
   const JointDef& d = j.def;
   if (d.type != JointType::Distance || !(d.minDistance < d.maxDistance)) {
     j.taut = false;
     return;
   }
-  const JointGeometry g = geometryOf(bodies, d);
   const Vec3 sep = g.pB - g.pA;
   const float len = sep.norm();
   if (!(len > 1e-6f)) {
@@ -335,8 +333,8 @@ void updateTautness(const BodyStore& bodies, Joint& j, float dt) {
   j.taut = len + dt * stretching > d.maxDistance - kRopeTautSlop;
 }
 
-void prepareJoint(const BodyStore& bodies, const Joint& j, uint32_t ji, const SolverParams& p,
-                  const JointSolverParams& jp, float time, JointConstraint& jc) {
+void prepareRows(const BodyStore& bodies, const Joint& j, const JointGeometry& g, uint32_t ji, const SolverParams& p,
+                 const JointSolverParams& jp, float time, JointConstraint& jc) {
   const JointDef& d = j.def;
   const uint32_t a = d.bodyA, b = d.bodyB;
   jc.a = a;
@@ -353,7 +351,6 @@ void prepareJoint(const BodyStore& bodies, const Joint& j, uint32_t ji, const So
   rb.mB = jc.invMassB = jc.dynB ? bodies.invMass[b] : 0.0f;
   rb.iA = jc.dynA ? bodies.invInertiaWorld[a] : Mat3::Zero();
   rb.iB = jc.dynB ? bodies.invInertiaWorld[b] : Mat3::Zero();
-  const JointGeometry g = geometryOf(bodies, d);
   const float invDt = 1.0f / p.dt;
   const float beta = jp.beta * invDt;
   const Vec3 sep = g.pB - g.pA;
@@ -521,6 +518,20 @@ void prepareJoint(const BodyStore& bodies, const Joint& j, uint32_t ji, const So
   jc.extraRows = e;
 }
 
+}  // namespace
+
+void prepareJoint(const BodyStore& bodies, const Joint& j, uint32_t ji, const SolverParams& p,
+                  const JointSolverParams& jp, float time, JointConstraint& jc) {
+  prepareRows(bodies, j, geometryOf(bodies, j.def), ji, p, jp, time, jc);
+}
+
+void prepareJointForStep(const BodyStore& bodies, Joint& j, uint32_t ji, const SolverParams& p,
+                         const JointSolverParams& jp, float time, JointConstraint& jc) {
+  const JointGeometry g = geometryOf(bodies, j.def);
+  updateTautness(bodies, j, g, p.dt);
+  prepareRows(bodies, j, g, ji, p, jp, time, jc);
+}
+
 namespace {
 
 struct Velocities {
@@ -617,7 +628,7 @@ float solveJointIteration(BodyStore& bodies, JointConstraint* js, size_t n, Join
   if (tree && tree->size() > 0) {
     residual = std::max(residual, tree->solve(bodies, js, useBias));
     // The tree solves a taut rope as a rod: one that pushed (its ends closing) lets go.
-    for (size_t k = 0; k < n; ++k) {
+    for (size_t k = 0; tree->pulls() && k < n; ++k) {
       JointConstraint& c = js[k];
       if (!c.pullRows || !c.inTree) continue;
       for (int i = 0; i < c.blockRows; ++i)

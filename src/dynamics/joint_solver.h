@@ -98,8 +98,10 @@ void restoreMass(BodyStore& bodies, uint32_t body);
 /// fell for one step, jerked and flailed.
 /// A taut rope's length is an equality row that may only pull, solved exactly with the joint tree
 /// (a chain of ropes carrying a load is then as stiff as a chain of rods); a slack one keeps its limit
-/// row. Call before prepareJoint.
-void updateTautness(const BodyStore& bodies, Joint& j, float dt);
+/// row. The step's prepare: decides that (Joint::taut), then builds the rows as prepareJoint does,
+/// from the same geometry.
+void prepareJointForStep(const BodyStore& bodies, Joint& j, uint32_t ji, const SolverParams& p,
+                         const JointSolverParams& jp, float time, JointConstraint& jc);
 inline constexpr float kRopeTautSlop = 1e-3f;  ///< m
 
 /// Single-row joints (rods, taut ropes) between the same two dynamic bodies (the two ropes at each

@@ -198,9 +198,11 @@ struct Side {
 }  // namespace
 
 void JointTree::assemble(const JointConstraint* js) {
+  pulls_ = false;
   for (uint32_t e = 0; e < order_.size(); ++e) {
     const JointConstraint& jc = js[order_[e].c];
     const int m = jc.blockRows;
+    pulls_ = pulls_ || jc.pullRows != 0;
     scale_[e] = 0.0;
     for (int i = 0; i < m; ++i)
       for (int k = 0; k < m; ++k) {

@@ -36,6 +36,8 @@ class JointTree {
   /// Joints of the last build that close a loop through other bodies (solved softly, outside the
   /// tree); a second joint between two bodies already joined is not counted.
   uint32_t loops() const { return loops_; }
+  /// Some joint in the tree has a row that may only pull (a taut rope) this step.
+  bool pulls() const { return pulls_; }
   /// The tree is dropped when more than one joint in this many closes a loop (a grid: one in two).
   static constexpr uint32_t kMaxLoopShare = 8;
   /// For solves against other right-hand sides (dynamics/joint_coupling.h): the e-th joint of the
@@ -95,6 +97,7 @@ class JointTree {
   void solveInPlace();  // rhs_ <- A^-1 rhs_ with the factors
 
   uint32_t loops_ = 0;
+  bool pulls_ = false;
   std::vector<std::pair<uint64_t, uint32_t>> parallel_;  // mergeParallelJoints' scratch
   std::vector<JointShape> shape_;   // per joint of the last build
   std::vector<uint8_t> inTree_;     // per joint of the last build: its inTree

@@ -138,10 +138,7 @@ void World::prepareJoints(uint32_t k, const SolverParams& sp) {
   const uint32_t nj = isl.jointCount;
   const uint32_t* ids = islands_.joints.data() + isl.firstJoint;
   const float time = float(stepCount_ + 1) * sp.dt;
-  for (uint32_t j = 0; j < nj; ++j) {
-    updateTautness(bodies_, joints_[ids[j]], sp.dt);
-    prepareJoint(bodies_, joints_[ids[j]], ids[j], sp, settings_.joints, time, js[j]);
-  }
+  for (uint32_t j = 0; j < nj; ++j) prepareJointForStep(bodies_, joints_[ids[j]], ids[j], sp, settings_.joints, time, js[j]);
   if (sp.warmStart) warmStartJoints(bodies_, js, nj);
   if (settings_.joints.treeSolve) jointTrees_[k].build(js, nj, parallelJoints_);
 }
