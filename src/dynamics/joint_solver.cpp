@@ -419,13 +419,8 @@ void prepareRows(const BodyStore& bodies, const Joint& j, const JointGeometry& g
   jc.blockRows = m;
   jc.ownRows = int8_t(m);
   jc.inTree = false;
-  // Soft constraint coefficients (spring-damper solved implicitly): used when the joint is not in a tree.
-  const float omega = 2.0f * kPi * std::min(jp.softHertz, 0.5f / p.dt), h = p.dt;
-  const float a1 = 2.0f * jp.softDampingRatio + h * omega, a2 = h * omega * a1, a3 = 1.0f / (1.0f + a2);
   jc.treeBiasRate = beta;
-  jc.softBiasRate = omega / a1;
-  jc.massScale = a2 * a3;
-  jc.impulseScale = a3;
+  setSoftness(jc, jp.softHertz, jp.softDampingRatio, p.dt);
   for (int i = 0; i < m; ++i) {
     jc.blockError[i] = C[i];
     jc.blockImpulse[i] = p.warmStart ? j.blockImpulse[i] : 0.0f;
@@ -519,6 +514,14 @@ void prepareRows(const BodyStore& bodies, const Joint& j, const JointGeometry& g
 }
 
 }  // namespace
+
+void setSoftness(JointConstraint& jc, float hertz, float dampingRatio, float dt) {
+  const float omega = 2.0f * kPi * std::min(hertz, 0.5f / dt), h = dt;
+  const float a1 = 2.0f * dampingRatio + h * omega, a2 = h * omega * a1, a3 = 1.0f / (1.0f + a2);
+  jc.softBiasRate = omega / a1;
+  jc.massScale = a2 * a3;
+  jc.impulseScale = a3;
+}
 
 void prepareJoint(const BodyStore& bodies, const Joint& j, uint32_t ji, const SolverParams& p,
                   const JointSolverParams& jp, float time, JointConstraint& jc) {

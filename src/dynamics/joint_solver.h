@@ -10,6 +10,7 @@
 #include "dynamics/contact_solver.h"
 #include "dynamics/joint.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <utility>
@@ -28,6 +29,18 @@ struct JointSolverParams {
   /// blow a loop apart.
   float softHertz = 30.0f;
   float softDampingRatio = 1.0f;
+  /// Where no tree holds an island's joints (a net or grid: too many close loops), every row is soft
+  /// and swept, and a row stiffer than the sweeps converge on rings: there the frequency is at most
+  /// this share of the step rate per main sweep. The 30x30 curtain of stress/joint_grid still moved
+  /// at 1.8 m/s RMS after a minute at 4 iterations (3 main sweeps) with 30 Hz rows, 0.001 m/s with
+  /// 20.7; a 10x10 net of beads on rods 0.52 -> 0.01 m/s. Borderline measured: 22-25 Hz at 3 sweeps,
+  /// ~27 at 4, 30 at 5. Loop rows beside a tree keep softHertz (a ring of 12 links at 4 iterations
+  /// opened 3.2 cm at 30 Hz, 4.4 at 20.7, without ringing at either).
+  float softHertzPerSweep = 0.115f;
+  /// That frequency for a step of `dt` with `mainSweeps` sweeps (Baumgarte's; relax sweeps not counted).
+  float softHertzFor(int mainSweeps, float dt) const {
+    return std::min({softHertz, 0.5f / dt, softHertzPerSweep * float(std::max(mainSweeps, 1)) / dt});
+  }
   /// The force behind a joint's geometric stiffness falls by at most this factor a step (Joint::heldForce).
   /// From the last step's force alone, the stiffness of a bridge under crates flipped with its force,
   /// high one step and low the next, and the bridge tore at 16-64 sweeps.
@@ -113,6 +126,10 @@ inline constexpr float kRopeTautSlop = 1e-3f;  ///< m
 /// merged, a bridge of paired ball joints gained energy under other compiler flags (ThreadSanitizer's
 /// build). `order` is scratch (kept between calls).
 void mergeParallelJoints(JointConstraint* js, uint32_t n, std::vector<std::pair<uint64_t, uint32_t>>& order);
+
+/// The soft block coefficients of a joint outside a tree: a spring-damper of `hertz` (at most half the
+/// step rate) and `dampingRatio`, solved implicitly.
+void setSoftness(JointConstraint& jc, float hertz, float dampingRatio, float dt);
 
 /// Builds the rows of joint `j` (index ji) into `jc`; `time` is the simulated time at the end of the
 /// step (servo motors aim at their trajectory there).

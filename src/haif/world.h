@@ -310,6 +310,7 @@ class World {
   std::vector<float> jointLinearStiffness_;        // per body, this step (N/m): distance joints and ropes
   PairMap jointedPairs_;                           // joints per pair of bodies (both not the world)
   bool parallelJoints_ = false;                    // some pair has two joints: merge their rows
+  int jointMainSweeps_ = 0;                        // this step's main sweeps: soft rows' frequency (softHertzFor)
   PairMap jointPairs_;  // body pair -> number of unbroken joints that keep the two from colliding
   std::vector<PinnedBody> pins_;          // this step's pinned bodies (findPinnedBodies)
   std::vector<uint8_t> jointsOfBody_;     // findPinnedBodies' scratch: unbroken joints per body (capped)

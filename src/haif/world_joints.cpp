@@ -138,9 +138,14 @@ void World::prepareJoints(uint32_t k, const SolverParams& sp) {
   const uint32_t nj = isl.jointCount;
   const uint32_t* ids = islands_.joints.data() + isl.firstJoint;
   const float time = float(stepCount_ + 1) * sp.dt;
-  for (uint32_t j = 0; j < nj; ++j) prepareJointForStep(bodies_, joints_[ids[j]], ids[j], sp, settings_.joints, time, js[j]);
+  const JointSolverParams& jp = settings_.joints;
+  for (uint32_t j = 0; j < nj; ++j) prepareJointForStep(bodies_, joints_[ids[j]], ids[j], sp, jp, time, js[j]);
   if (sp.warmStart) warmStartJoints(bodies_, js, nj);
-  if (settings_.joints.treeSolve) jointTrees_[k].build(js, nj, parallelJoints_);
+  if (jp.treeSolve) jointTrees_[k].build(js, nj, parallelJoints_);
+  // No tree holds these joints (a net): every row is swept, no stiffer than the sweeps converge on.
+  const float hertz = jp.softHertzFor(jointMainSweeps_, sp.dt);
+  if ((!jp.treeSolve || jointTrees_[k].size() == 0) && hertz < std::min(jp.softHertz, 0.5f / sp.dt))
+    for (uint32_t j = 0; j < nj; ++j) setSoftness(js[j], hertz, jp.softDampingRatio, sp.dt);
 }
 
 // After the relax sweeps: keep the impulses for the next step, then (the rows being free now) project the

@@ -411,6 +411,7 @@ void World::relaxIslands(int relaxIterations) {
 void World::solve(int iterations) {
   // Iterations with position correction now; the relax iterations run after integration.
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
+  jointMainSweeps_ = iterations;  // the reference solve of measureSolveError keeps the step's rows
   constraints_.resize(islands_.contacts.size());
   chainLinks_.resize(constraints_.size());
   chainMark_.resize(bodyCount());
