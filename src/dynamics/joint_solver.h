@@ -38,8 +38,9 @@ struct JointSolverParams {
   /// opened 3.2 cm at 30 Hz, 4.4 at 20.7, without ringing at either).
   float softHertzPerSweep = 0.115f;
   /// That frequency for a step of `dt` with `mainSweeps` sweeps (Baumgarte's; relax sweeps not counted).
+  /// setSoftness applies the half-step-rate bound.
   float softHertzFor(int mainSweeps, float dt) const {
-    return std::min({softHertz, 0.5f / dt, softHertzPerSweep * float(std::max(mainSweeps, 1)) / dt});
+    return std::min(softHertz, softHertzPerSweep * float(std::max(mainSweeps, 1)) / dt);
   }
   /// The force behind a joint's geometric stiffness falls by at most this factor a step (Joint::heldForce).
   /// From the last step's force alone, the stiffness of a bridge under crates flipped with its force,

@@ -144,7 +144,7 @@ void World::prepareJoints(uint32_t k, const SolverParams& sp) {
   if (jp.treeSolve) jointTrees_[k].build(js, nj, parallelJoints_);
   // No tree holds these joints (a net): every row is swept, no stiffer than the sweeps converge on.
   const float hertz = jp.softHertzFor(jointMainSweeps_, sp.dt);
-  if ((!jp.treeSolve || jointTrees_[k].size() == 0) && hertz < std::min(jp.softHertz, 0.5f / sp.dt))
+  if ((!jp.treeSolve || jointTrees_[k].size() == 0) && hertz < jp.softHertz)
     for (uint32_t j = 0; j < nj; ++j) setSoftness(js[j], hertz, jp.softDampingRatio, sp.dt);
 }
 
