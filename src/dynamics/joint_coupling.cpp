@@ -102,7 +102,9 @@ bool jointResponse(const BodyStore& bodies, const JointCoupling& coupling, const
   double moving = 0.0;
   for (uint32_t e = 0; e < tree.size(); ++e) {
     const JointConstraint& jc = coupling.joints[tree.jointAt(e)];
-    for (int i = 0; i < jc.blockRows; ++i) moving = std::max(moving, std::fabs(rowVelocity(jc, i, true)));
+    const double* x = tree.rowsOf(e);  // a soft row holds when J v = compliance * x (the impulse is -x)
+    for (int i = 0; i < jc.blockRows; ++i)
+      moving = std::max(moving, std::fabs(rowVelocity(jc, i, true) - double(jc.blockCompliance[i]) * x[i]));
   }
   return moving <= kJointHoldTolerance * largest;
 }

@@ -24,7 +24,8 @@ namespace {
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr double kRedundantPivot = 1e-5;  // relative to the largest diagonal entry
 constexpr float kMinStiffLength = 1e-3f;   // m: a shorter distance joint has no direction to turn
-constexpr float kBeadArm = 0.25f;          // an anchor within this fraction of the length from the centre
+// Below this (omega h)^2 a rod's sideways mode is slow enough for the explicit step: no sideways rows.
+constexpr double kSidewaysOmega2 = 2.0;
 
 inline Transform transformOf(const BodyStore& b, uint32_t i) { return i == kWorldBody ? Transform{} : b.xf[i]; }
 
@@ -232,7 +233,7 @@ float jointPosition(const BodyStore& bodies, const JointDef& d) {
   return 0.0f;
 }
 
-void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* angular, float* linear) {
+void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* angular) {
   const float f = j.heldForce;
   if (j.broken || !(f > 0.0f)) return;
   const JointDef& d = j.def;
@@ -240,15 +241,23 @@ void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* an
   const Vec3 rA = xa.rotate(d.localAnchorA), rB = xb.rotate(d.localAnchorB);
   if (d.bodyA != kWorldBody) angular[d.bodyA] += f * rA.norm();
   if (d.bodyB != kWorldBody) angular[d.bodyB] += f * rB.norm();
-  if (d.type != JointType::Distance || !j.inTree) return;
-  const float len = ((xb.p + rB) - (xa.p + rA)).norm();
-  if (!(len > kMinStiffLength)) return;
-  // Only at a body held near its centre (a bead): where the anchor has a lever arm, turning the body
-  // moves the anchor too, and a mass added to its translation alone shifts the solve's response onto
-  // its rotation (a plank chain on 6 cm rods tore by 2 m).
-  const float arm = kBeadArm * len;
-  if (d.bodyA != kWorldBody && rA.norm() <= arm) linear[d.bodyA] += f / len;
-  if (d.bodyB != kWorldBody && rB.norm() <= arm) linear[d.bodyB] += f / len;
+}
+
+float sidewaysStiffness(const Joint& j, const Vec3& separation) {
+  const float len = separation.norm();
+  if (j.def.type != JointType::Distance || j.broken || !(j.heldForce > 0.0f) || !(len > kMinStiffLength)) return 0.0f;
+  if (j.lastForce.dot(separation) > 0.0f) return 0.0f;  // a strut: pushed, it would buckle, not stiffen
+  return j.heldForce / len;
+}
+
+void dropSidewaysRows(JointConstraint& jc) {
+  if (jc.sidewaysRows == 0) return;
+  jc.blockRows -= jc.sidewaysRows;
+  jc.sidewaysRows = 0;
+  RowBuilder rb;
+  rb.mA = jc.invMassA;
+  rb.mB = jc.invMassB;
+  if (jc.blockRows > 0) invertBlock(rb, jc);
 }
 
 void stiffenInertia(BodyStore& bodies, uint32_t body, float stiffness, float dt) {
@@ -258,20 +267,10 @@ void stiffenInertia(BodyStore& bodies, uint32_t body, float stiffness, float dt)
   bodies.invInertiaWorld[body] = (I + k * Mat3::Identity()).inverse();
 }
 
-void stiffenMass(BodyStore& bodies, uint32_t body, float stiffness, float dt) {
-  const float k = stiffness * dt * dt;
-  if (!(k > 0.0f) || bodies.kind[body] != BodyKind::Dynamic) return;
-  bodies.invMass[body] = 1.0f / (bodies.mass[body] + k);
-}
-
-void restoreMass(BodyStore& bodies, uint32_t body) {
-  if (bodies.kind[body] == BodyKind::Dynamic && bodies.mass[body] > 0.0f) bodies.invMass[body] = 1.0f / bodies.mass[body];
-}
-
 void mergeParallelJoints(JointConstraint* js, uint32_t n, std::vector<std::pair<uint64_t, uint32_t>>& order) {
   order.clear();
   for (uint32_t c = 0; c < n; ++c)
-    if (js[c].blockRows == 1 && js[c].dynA && js[c].dynB)
+    if (js[c].blockRows - js[c].sidewaysRows == 1 && js[c].dynA && js[c].dynB)
       order.emplace_back(uint64_t(std::min(js[c].a, js[c].b)) << 32 | std::max(js[c].a, js[c].b), c);
   std::sort(order.begin(), order.end());  // by pair, then joint index: the first joint of a pair hosts
   for (size_t i = 0; i < order.size();) {
@@ -281,24 +280,40 @@ void mergeParallelJoints(JointConstraint* js, uint32_t n, std::vector<std::pair<
     bool merged = false;
     for (size_t k = i + 1; k < e; ++k) {
       JointConstraint& c = js[order[k].second];
-      if (host.blockRows + c.blockRows > kJointBlockRows) continue;
-      c.host = int32_t(order[i].second);
-      c.hostRow = int8_t(host.blockRows);
+      if (host.blockRows + 1 > kJointBlockRows) continue;
       c.hostReversed = c.a != host.a;
-      for (int r = 0; r < c.blockRows; ++r) {
-        JointRow row = c.block[r];
-        if (c.hostReversed) {  // the same velocity seen from the host's A and B (RowBuilder::k's terms)
-          std::swap(row.angA, row.angB);
-          std::swap(row.iAngA, row.iAngB);
-          row = RowBuilder::negated(row);
-        }
-        const int h = host.blockRows++;
-        host.block[h] = row;
-        host.blockError[h] = c.blockError[r];
-        host.blockImpulse[h] = c.blockImpulse[r];
-        if (c.pullRows >> r & 1) host.pullRows = uint8_t(host.pullRows | 1u << h);
+      auto seenFromHost = [&](JointRow row) {  // the same velocity seen from the host's A and B (RowBuilder::k's terms)
+        if (!c.hostReversed) return row;
+        std::swap(row.angA, row.angB);
+        std::swap(row.iAngA, row.iAngB);
+        return RowBuilder::negated(row);
+      };
+      // The length row goes after the host's length rows; sideways rows stay last (dropSidewaysRows).
+      const int h = host.blockRows - host.sidewaysRows;
+      for (int r = host.blockRows; r-- > h;) {
+        host.block[r + 1] = host.block[r];
+        host.blockError[r + 1] = host.blockError[r];
+        host.blockImpulse[r + 1] = host.blockImpulse[r];
+        host.blockCompliance[r + 1] = host.blockCompliance[r];
       }
+      host.block[h] = seenFromHost(c.block[0]);
+      host.blockError[h] = c.blockError[0];
+      host.blockImpulse[h] = c.blockImpulse[0];
+      host.blockCompliance[h] = 0.0f;
+      if (c.pullRows & 1) host.pullRows = uint8_t(host.pullRows | 1u << h);
+      ++host.blockRows;
+      for (int r = 1; r <= c.sidewaysRows && host.blockRows < kJointBlockRows; ++r) {
+        const int s = host.blockRows++;
+        host.block[s] = seenFromHost(c.block[r]);
+        host.blockError[s] = 0.0f;
+        host.blockImpulse[s] = 0.0f;
+        host.blockCompliance[s] = c.blockCompliance[r];
+        ++host.sidewaysRows;
+      }
+      c.host = int32_t(order[i].second);
+      c.hostRow = int8_t(h);
       c.blockRows = 0;
+      c.sidewaysRows = 0;
       c.pullRows = 0;
       merged = true;
     }
@@ -330,7 +345,11 @@ void updateTautness(const BodyStore& bodies, Joint& j, const JointGeometry& g, f
     return body == kWorldBody ? Vec3::Zero() : Vec3(bodies.v[body] + bodies.w[body].cross(r));
   };
   const float stretching = (sep / len).dot(pointVelocity(d.bodyB, g.rB) - pointVelocity(d.bodyA, g.rA));
-  j.taut = len + dt * stretching > d.maxDistance - kRopeTautSlop;
+  // A rope that pulled last step and is still at its length stays taut though its ends approach: its
+  // pull may stop them within the step (the tree lets go of it if not). Judged slack, it left a
+  // plank bridge nudged at 1 m/s as two trees joined by a swept limit row, and it sagged by metres.
+  const bool pulled = len > d.maxDistance - kRopeTautSlop && j.lastForce.dot(sep) < 0.0f;
+  j.taut = pulled || len + dt * stretching > d.maxDistance - kRopeTautSlop;
 }
 
 void prepareRows(const BodyStore& bodies, const Joint& j, const JointGeometry& g, uint32_t ji, const SolverParams& p,
@@ -416,7 +435,6 @@ void prepareRows(const BodyStore& bodies, const Joint& j, const JointGeometry& g
     }
     default: break;
   }
-  jc.blockRows = m;
   jc.ownRows = int8_t(m);
   jc.inTree = false;
   jc.treeBiasRate = beta;
@@ -424,9 +442,41 @@ void prepareRows(const BodyStore& bodies, const Joint& j, const JointGeometry& g
   for (int i = 0; i < m; ++i) {
     jc.blockError[i] = C[i];
     jc.blockImpulse[i] = p.warmStart ? j.blockImpulse[i] : 0.0f;
+    jc.blockCompliance[i] = 0.0f;
   }
   // A rope's tension carries over between its two forms (one of the two impulses is zero).
   if (jc.pullRows) jc.blockImpulse[0] = p.warmStart ? std::min(j.blockImpulse[0] - j.extraImpulse[1], 0.0f) : 0.0f;
+  // A taut rod's or rope's sideways rows: no error to correct and nothing carried over (the pull
+  // is along the new direction), only the stiffness of the step's turn. Kept only in a tree; made
+  // only for a joint that was in one last step (a net's joints never are: no rows to take out).
+  jc.sidewaysRows = 0;
+  const float sideways = d.type == JointType::Distance && m == 1 && j.inTree && jp.treeSolve && jp.geometricStiffness
+                             ? sidewaysStiffness(j, sep)
+                             : 0.0f;
+  if (sideways > 0.0f) {
+    Vec3 t[2];
+    orthonormalBasis(sep.normalized(), t[0], t[1]);
+    JointRow rows[2] = {rb.linear(t[0], g.rA, g.rB), rb.linear(t[1], g.rA, g.rB)};
+    // (omega h)^2 of the sideways mode at the two bodies alone (an upper bound: the rest of the tree
+    // only adds mass), and the share s of its stiffness taken implicitly. Taken whole, the rows damp
+    // every swing by Omega^2 a step (a Newton's cradle lost 1 % of its momentum, a chain swinging a
+    // load came to rest within the minute). With the rows' explicit turn from step to step, any s
+    // above 1/2 - 2 / Omega^2 is stable (a step of one such mode); (Omega^2 - 2) / (Omega^2 + 2) is,
+    // with room, and none below Omega^2 = 2, where the explicit step is stable alone.
+    double omega2[2];
+    for (int r = 0; r < 2; ++r) omega2[r] = double(sideways) * rb.k(rows[r], rows[r]) * double(p.dt) * double(p.dt);
+    if (std::max(omega2[0], omega2[1]) > kSidewaysOmega2) {
+      for (int r = 0; r < 2; ++r) {
+        const double share = std::max(0.0, (omega2[r] - kSidewaysOmega2) / (omega2[r] + kSidewaysOmega2));
+        jc.block[m] = rows[r];
+        jc.blockError[m] = 0.0f;
+        jc.blockImpulse[m] = 0.0f;
+        jc.blockCompliance[m++] = share > 0.0 ? float(1.0 / (double(sideways) * p.dt * p.dt * share)) : 1e30f;
+      }
+      jc.sidewaysRows = 2;
+    }
+  }
+  jc.blockRows = m;
   if (m > 0) invertBlock(rb, jc);
 
   // Limit and motor rows. A limit is a one-sided row on the distance to it, C >= 0: while C > 0 the

@@ -21,7 +21,7 @@ namespace haif {
 /// How joints are solved; the World holds one (WorldSettings::joints).
 struct JointSolverParams {
   bool treeSolve = true;           ///< joints that form a tree: exact block per sweep (JointTree)
-  bool geometricStiffness = true;  ///< see accumulateJointStiffness
+  bool geometricStiffness = true;  ///< see accumulateJointStiffness and sidewaysStiffness
   bool postProjection = true;      ///< after integration, project tree joints back onto their constraints
   float beta = 0.5f;               ///< Baumgarte factor of the tree and of limits
   /// Joints outside a tree (closing a loop) are soft constraints with this frequency (at most half the
@@ -61,6 +61,7 @@ struct JointConstraint {
   float invMassA, invMassB;
   bool dynA, dynB;      // only dynamic, awake bodies receive velocity changes
   int blockRows;        // equality rows in use
+  int8_t sidewaysRows;  // the last block rows: a taut rod's or rope's sideways stiffness (sidewaysStiffness)
   int extraRows;        // limit/motor rows in use
   bool motor;           // extra row 0 is a motor (solved before the block; limits come after it)
   bool inTree;          // the block is solved by the island's JointTree, not on its own
@@ -75,6 +76,7 @@ struct JointConstraint {
   float treeBiasRate;                                  // 1/s: bias = rate * C in the tree (Baumgarte)
   float softBiasRate;                                  // 1/s: bias = rate * C of a soft block (outside a tree)
   float blockImpulse[kJointBlockRows];
+  float blockCompliance[kJointBlockRows];  // 1/kg: a soft row solves J v + compliance * impulse = 0; 0 rigid
   float massScale, impulseScale;  // soft block coefficients of the main sweeps
   JointRow extra[kJointExtraRows];
   float extraMass[kJointExtraRows];   // 1 / (J M^-1 J^T)
@@ -86,13 +88,24 @@ struct JointConstraint {
 };
 
 /// Geometric stiffness of the joints at their bodies: for each body, the sum over its joints of their
-/// force (Joint::heldForce: the last step's, or more while it falls) times the lever arm (N m, `angular`). A light link pulled hard along a chain has a rotation
-/// mode far faster than the step (a 100 kg load on 1 kg links: ~200 rad/s at 60 Hz) that the linearised
-/// joint rows meet only a step late, so it spins up and tears the chain. A distance joint or rope also
-/// turns its direction as its ends move across it: force over length (N/m, `linear`) at both bodies; a
-/// light bead between two taut rods has a sideways mode of sqrt(2 f / (L m)) (a 20 kg load on beads of
-/// 0.2 kg, 0.4 m apart: ~100 rad/s). Adds to both arrays (per body).
-void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* angular, float* linear);
+/// force (Joint::heldForce: the last step's, or more while it falls) times the lever arm (N m). A light
+/// link pulled hard along a chain has a rotation mode far faster than the step (a 100 kg load on 1 kg
+/// links: ~200 rad/s at 60 Hz) that the linearised joint rows meet only a step late, so it spins up and
+/// tears the chain. Adds to `angular` (per body). A rod's or rope's turn is sidewaysStiffness.
+void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* angular);
+
+/// A taut rod or rope pulled with force f turns its pull as its ends move across it: a sideways
+/// stiffness of f / length between its anchors. On short links it is far faster than the step (0.44 m
+/// planks on 6 cm rods under 540 N: ~190 rad/s, 3 radians a step at 60 Hz), and met only by the next
+/// step's rows it spins up: a sagging plank bridge nudged at 3 m/s tore by a metre. Where that mode is
+/// too fast for the step and the joint is in a tree, its block gets two sideways rows, soft, with
+/// part of that stiffness treated implicitly (backward Euler), exact in the tree's solve (prepareRows
+/// says how much). N/m; 0 for a joint that pushes or carries nothing. (Session 42 added f / length to
+/// the mass of beads instead, in all directions: the rows replace it.)
+float sidewaysStiffness(const Joint& j, const Vec3& separation);
+
+/// Takes a joint's sideways rows out of its block (a joint outside the tree is a soft row of its own).
+void dropSidewaysRows(JointConstraint& jc);
 
 /// Adds h^2 times a body's geometric stiffness to its world inertia for this step's solve (Andrews et
 /// al. 2017, diagonal geometric stiffness): the fast mode is then treated implicitly, damped instead of
@@ -101,10 +114,6 @@ void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* an
 /// bridge); integration restores the true inertia.
 void stiffenInertia(BodyStore& bodies, uint32_t body, float stiffness, float dt);
 
-/// The same for translation: h^2 times the body's linear geometric stiffness added to its mass (all
-/// directions, as for the inertia) for this step's solve; restoreMass puts the true mass back.
-void stiffenMass(BodyStore& bodies, uint32_t body, float stiffness, float dt);
-void restoreMass(BodyStore& bodies, uint32_t body);
 
 /// A rope (a distance joint with min < max) is taut for this step when its ends' velocities (gravity
 /// included) would leave it within kRopeTautSlop of its length or longer at the end of the step. A rope

@@ -52,6 +52,8 @@ void JointTree::build(JointConstraint* js, uint32_t n, bool mergeParallel) {
     inTree_.resize(n);
     for (uint32_t c = 0; c < n; ++c) inTree_[c] = js[c].inTree ? 1 : 0;
   }
+  for (uint32_t c = 0; c < n; ++c)
+    if (!js[c].inTree) dropSidewaysRows(js[c]);
   if (order_.empty()) return;
   assemble(js);
   factor();
@@ -215,6 +217,7 @@ void JointTree::assemble(const JointConstraint* js) {
         // ratio is not taken for a redundant row.
         if (i == k) scale_[e] = std::max(scale_[e], fromA > 0.0 && fromB > 0.0 ? std::min(fromA, fromB) : fromA + fromB);
       }
+    for (int i = m - jc.sidewaysRows; i < m; ++i) diag_[e].a[i * m + i] += double(jc.blockCompliance[i]);
   }
   // Off-diagonal blocks couple two joints through the one body they share.
   for (uint32_t bi = 0; bi < bodies_.size(); ++bi) {
@@ -306,7 +309,9 @@ float JointTree::solve(BodyStore& bodies, JointConstraint* js, bool useBias) {
     for (int i = 0; i < c.blockRows; ++i) {
       const JointRow& r = c.block[i];
       const float cdot = r.lin.dot(vb - va) + r.angB.dot(wb) - r.angA.dot(wa);
-      const float v = cdot + (useBias ? c.treeBiasRate * c.blockError[i] : 0.0f);
+      float v = cdot + (useBias ? c.treeBiasRate * c.blockError[i] : 0.0f);
+      // A soft row's impulse is its spring's (J v + compliance * impulse = 0), in every sweep.
+      if (c.blockCompliance[i] > 0.0f) v += c.blockCompliance[i] * c.blockImpulse[i];
       residual = std::max(residual, std::fabs(v));
       rhs_[kJointBlockRows * e + i] = -double(v);
     }

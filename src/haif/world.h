@@ -307,7 +307,6 @@ class World {
   std::vector<JointConstraint> jointConstraints_;  // solver rows, grouped by island like constraints_
   std::vector<JointTree> jointTrees_;              // per island slot: factorisation buffers, reused
   std::vector<float> jointStiffness_;              // per body, this step (N m)
-  std::vector<float> jointLinearStiffness_;        // per body, this step (N/m): distance joints and ropes
   PairMap jointedPairs_;                           // joints per pair of bodies (both not the world)
   bool parallelJoints_ = false;                    // some pair has two joints: merge their rows
   int jointMainSweeps_ = 0;                        // this step's main sweeps: soft rows' frequency (softHertzFor)

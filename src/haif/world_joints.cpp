@@ -112,23 +112,18 @@ void World::breakJoints() {
   }
 }
 
-// Geometric stiffness of loaded joints, added to their bodies' inertia and mass for this step's solve
-// (contacts and joints alike); integration puts the true inertia back, finishJoints the true mass.
+// Geometric stiffness of loaded joints, added to their bodies' inertia for this step's solve
+// (contacts and joints alike); integration puts the true inertia back.
 void World::stiffenJointedBodies() {
   if (!settings_.joints.geometricStiffness) return;
   jointStiffness_.assign(bodyCount(), 0.0f);
-  jointLinearStiffness_.assign(bodyCount(), 0.0f);
-  for (uint32_t ji : islands_.joints)
-    accumulateJointStiffness(bodies_, joints_[ji], jointStiffness_.data(), jointLinearStiffness_.data());
+  for (uint32_t ji : islands_.joints) accumulateJointStiffness(bodies_, joints_[ji], jointStiffness_.data());
   // A pinned body turns about its point by its true inertia there (integratePinned), which reads
   // the solve's velocities as angular momentum about the point: the joint's impulse has no moment
   // about it only if the solve splits it by the true inertia too. Stiffened, a 1 m pendulum of a
   // 5 cm ball (k = m g L dt², 2.7 × its own inertia) lost 0.02 % of its swing's energy a swing.
-  for (const PinnedBody& pin : pins_) jointStiffness_[pin.body] = jointLinearStiffness_[pin.body] = 0.0f;
-  for (uint32_t i : islands_.bodies) {
-    stiffenInertia(bodies_, i, jointStiffness_[i], settings_.dt);
-    stiffenMass(bodies_, i, jointLinearStiffness_[i], settings_.dt);
-  }
+  for (const PinnedBody& pin : pins_) jointStiffness_[pin.body] = 0.0f;
+  for (uint32_t i : islands_.bodies) stiffenInertia(bodies_, i, jointStiffness_[i], settings_.dt);
 }
 
 // Rows of island k's joints, warm started, and its joint tree factorised (when joints are solved as a tree).
@@ -149,7 +144,7 @@ void World::prepareJoints(uint32_t k, const SolverParams& sp) {
 }
 
 // After the relax sweeps: keep the impulses for the next step, then (the rows being free now) project the
-// tree joints back onto their constraints at the integrated positions, and give the bodies their true mass.
+// tree joints back onto their constraints at the integrated positions.
 void World::finishJoints(uint32_t k) {
   const Island& isl = islands_.islands[k];
   JointConstraint* js = jointConstraints_.data() + isl.firstJoint;
@@ -167,9 +162,6 @@ void World::finishJoints(uint32_t k) {
     if (stiff)
       for (uint32_t j = 0; j < isl.bodyCount; ++j) bodies_.updateWorldInertia(bodies[j]);
   }
-  if (stiff)
-    for (uint32_t j = 0; j < isl.bodyCount; ++j)
-      if (jointLinearStiffness_[bodies[j]] > 0.0f) restoreMass(bodies_, bodies[j]);
 }
 
 void World::measureJointErrors() {
