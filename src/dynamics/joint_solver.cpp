@@ -250,8 +250,7 @@ float sidewaysStiffness(const Joint& j, const Vec3& separation) {
   return j.heldForce / len;
 }
 
-void dropSidewaysRows(JointConstraint& jc) {
-  if (jc.sidewaysRows == 0) return;
+void prepareSoftBlock(JointConstraint& jc) {
   jc.blockRows -= jc.sidewaysRows;
   jc.sidewaysRows = 0;
   RowBuilder rb;
@@ -277,7 +276,6 @@ void mergeParallelJoints(JointConstraint* js, uint32_t n, std::vector<std::pair<
     size_t e = i + 1;
     while (e < order.size() && order[e].first == order[i].first) ++e;
     JointConstraint& host = js[order[i].second];
-    bool merged = false;
     for (size_t k = i + 1; k < e; ++k) {
       JointConstraint& c = js[order[k].second];
       if (host.blockRows + 1 > kJointBlockRows) continue;
@@ -288,7 +286,7 @@ void mergeParallelJoints(JointConstraint* js, uint32_t n, std::vector<std::pair<
         std::swap(row.iAngA, row.iAngB);
         return RowBuilder::negated(row);
       };
-      // The length row goes after the host's length rows; sideways rows stay last (dropSidewaysRows).
+      // The length row goes after the host's length rows; sideways rows stay last (prepareSoftBlock).
       const int h = host.blockRows - host.sidewaysRows;
       for (int r = host.blockRows; r-- > h;) {
         host.block[r + 1] = host.block[r];
@@ -315,13 +313,6 @@ void mergeParallelJoints(JointConstraint* js, uint32_t n, std::vector<std::pair<
       c.blockRows = 0;
       c.sidewaysRows = 0;
       c.pullRows = 0;
-      merged = true;
-    }
-    if (merged) {  // the host's own soft solve (outside a tree) needs the inverse of its grown block
-      RowBuilder rb;
-      rb.mA = host.invMassA;
-      rb.mB = host.invMassB;
-      invertBlock(rb, host);
     }
     i = e;
   }
@@ -476,8 +467,7 @@ void prepareRows(const BodyStore& bodies, const Joint& j, const JointGeometry& g
       jc.sidewaysRows = 2;
     }
   }
-  jc.blockRows = m;
-  if (m > 0) invertBlock(rb, jc);
+  jc.blockRows = m;  // a joint left out of the tree is inverted then (prepareSoftBlock)
 
   // Limit and motor rows. A limit is a one-sided row on the distance to it, C >= 0: while C > 0 the
   // bound may be approached by at most C this step (speculative, no bounce), past it Baumgarte pushes back.

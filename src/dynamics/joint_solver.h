@@ -71,7 +71,8 @@ struct JointConstraint {
   int8_t hostRow;
   bool hostReversed;    // the host's bodies are this joint's B and A
   JointRow block[kJointBlockRows];
-  float blockInvK[kJointBlockRows * kJointBlockRows];  // (J M^-1 J^T)^-1, row-major, blockRows^2 used
+  float blockInvK[kJointBlockRows * kJointBlockRows];  // (J M^-1 J^T)^-1, row-major, blockRows^2 used; only
+                                                       // outside a tree (prepareSoftBlock)
   float blockError[kJointBlockRows];                   // position error C of each row
   float treeBiasRate;                                  // 1/s: bias = rate * C in the tree (Baumgarte)
   float softBiasRate;                                  // 1/s: bias = rate * C of a soft block (outside a tree)
@@ -104,8 +105,10 @@ void accumulateJointStiffness(const BodyStore& bodies, const Joint& j, float* an
 /// the mass of beads instead, in all directions: the rows replace it.)
 float sidewaysStiffness(const Joint& j, const Vec3& separation);
 
-/// Takes a joint's sideways rows out of its block (a joint outside the tree is a soft row of its own).
-void dropSidewaysRows(JointConstraint& jc);
+/// A joint outside the tree is a soft block of its own (solveJointIteration): takes its sideways rows
+/// out and inverts its block (blockInvK). JointTree::build does this for the joints it leaves out;
+/// without a tree, every joint needs it.
+void prepareSoftBlock(JointConstraint& jc);
 
 /// Adds h^2 times a body's geometric stiffness to its world inertia for this step's solve (Andrews et
 /// al. 2017, diagonal geometric stiffness): the fast mode is then treated implicitly, damped instead of

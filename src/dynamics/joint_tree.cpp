@@ -53,7 +53,7 @@ void JointTree::build(JointConstraint* js, uint32_t n, bool mergeParallel) {
     for (uint32_t c = 0; c < n; ++c) inTree_[c] = js[c].inTree ? 1 : 0;
   }
   for (uint32_t c = 0; c < n; ++c)
-    if (!js[c].inTree) dropSidewaysRows(js[c]);
+    if (!js[c].inTree) prepareSoftBlock(js[c]);
   if (order_.empty()) return;
   assemble(js);
   factor();

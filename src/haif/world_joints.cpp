@@ -137,6 +137,8 @@ void World::prepareJoints(uint32_t k, const SolverParams& sp) {
   for (uint32_t j = 0; j < nj; ++j) prepareJointForStep(bodies_, joints_[ids[j]], ids[j], sp, jp, time, js[j]);
   if (sp.warmStart) warmStartJoints(bodies_, js, nj);
   if (jp.treeSolve) jointTrees_[k].build(js, nj, parallelJoints_);
+  else
+    for (uint32_t j = 0; j < nj; ++j) prepareSoftBlock(js[j]);
   // No tree holds these joints (a net): every row is swept, no stiffer than the sweeps converge on.
   const float hertz = jp.softHertzFor(jointMainSweeps_, sp.dt);
   if ((!jp.treeSolve || jointTrees_[k].size() == 0) && hertz < jp.softHertz)
