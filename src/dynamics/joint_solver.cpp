@@ -462,6 +462,7 @@ void prepareRows(const BodyStore& bodies, const Joint& j, const JointGeometry& g
         jc.block[m] = rows[r];
         jc.blockError[m] = 0.0f;
         jc.blockImpulse[m] = 0.0f;
+        // A direction whose mode is slow keeps its row (the block's shape), with no stiffness.
         jc.blockCompliance[m++] = share > 0.0 ? float(1.0 / (double(sideways) * p.dt * p.dt * share)) : 1e30f;
       }
       jc.sidewaysRows = 2;

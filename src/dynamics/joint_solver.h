@@ -117,7 +117,6 @@ void prepareSoftBlock(JointConstraint& jc);
 /// bridge); integration restores the true inertia.
 void stiffenInertia(BodyStore& bodies, uint32_t body, float stiffness, float dt);
 
-
 /// A rope (a distance joint with min < max) is taut for this step when its ends' velocities (gravity
 /// included) would leave it within kRopeTautSlop of its length or longer at the end of the step. A rope
 /// hung at exactly its length is taut from the first step: judged slack there, a plank bridge on ropes
