@@ -188,6 +188,12 @@ std::vector<uint32_t> addPlankBridge(World& w, bool rope, const std::vector<floa
   return joints;
 }
 
+/// Three 20 kg crates (0.5 m cubes) 1-2 m above a bridge's deck, to land on it.
+void dropCrates(World& w) {
+  const float x[3] = {-2.0f, 0.0f, 1.5f};
+  for (int i = 0; i < 3; ++i) addBox(w, Vec3(x[i], 3.0f + 0.5f * float(i), 0.0f), Vec3::Constant(0.25f), 20.0f);
+}
+
 // The bridge hangs as placed. Ropes judged slack on the first step (hung exactly at their length, not
 // stretching) let it fall for a step and it never settled; two joints at each junction were one exact
 // row in the tree and a soft one beside it, and tore the bridge (before this session, with rods:
@@ -220,8 +226,7 @@ TEST(RopeChains, APlankBridgeCarriesCratesAtAnySweepCount) {
       World w(settingsAt(iterations));
       addGround(w);
       const std::vector<uint32_t> joints = addPlankBridge(w, rope, {-0.5f, 0.5f}, 12, 0.15f, 0.65f);
-      for (int i = 0; i < 3; ++i)
-        addBox(w, Vec3(i == 0 ? -2.0f : i == 1 ? 0.0f : 1.5f, 3.0f + 0.5f * float(i), 0.0f), Vec3::Constant(0.25f), 20.0f);
+      dropCrates(w);
       float worst = 0.0f;
       uint32_t speedLimited = 0;
       for (int s = 0; s < 600; ++s) {
@@ -252,10 +257,7 @@ void expectShortLinkBridgesHold(bool crates, int steps) {
         World w(settingsAt(iterations));
         addGround(w);
         const std::vector<uint32_t> joints = addPlankBridge(w, rope, edges, 16, 0.22f, 0.5f);
-        if (crates)
-          for (int i = 0; i < 3; ++i)
-            addBox(w, Vec3(i == 0 ? -2.0f : i == 1 ? 0.0f : 1.5f, 3.0f + 0.5f * float(i), 0.0f), Vec3::Constant(0.25f),
-                   20.0f);
+        if (crates) dropCrates(w);
         float worst = 0.0f;
         uint32_t speedLimited = 0;
         for (int s = 0; s < steps; ++s) {
