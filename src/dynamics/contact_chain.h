@@ -84,7 +84,7 @@ struct DenseNormalSystem {
   }
   int stride = 0;                         ///< rows the attached storage holds (row length of each matrix)
   double* factor = nullptr;               ///< in pivot order: L below the diagonal, D on it
-  double* nullBasis = nullptr;            ///< T (rank × (rows − rank)): the null space is [T; I]
+  double* nullBasis = nullptr;            ///< Tᵗ ((rows − rank) × rank): the null space is [T; I]
   double* nullGram = nullptr;             ///< Cholesky factor of I + TᵀT
   int rows = 0;                           ///< of the active links
   int rank = 0;                           ///< independent rows: the first `rank` in pivot order
