@@ -167,6 +167,10 @@ class World {
   /// joints, not split, two bodies in contact whose masses differ by exactMassRatio or more, and a
   /// landing in it lately (counted down in its contacts' Contact::exactSteps).
   bool wantsSmallIslandSolve(uint32_t k);
+  /// Island k, of at most kCheapLinks contacts, no joints and not split, is deeper than this step's
+  /// `mainSweeps` carry a landing through (WorldSettings::deepLayersPerSweep): solved as a small
+  /// island too, with room for all of its rows.
+  bool tooDeepForSweeps(uint32_t k, int mainSweeps) const;
   /// Island k may have its contacts solved through its joints (dynamics/joint_coupling.h): joints and
   /// at most kCheapLinks contacts, not split. Whether it is, prepareIsland decides from its rows.
   bool mayCoupleJoints(uint32_t k) const;
@@ -252,9 +256,10 @@ class World {
   // together as a small island (contact_chain.h).
   enum ExactSolve : uint8_t { kChainSolve = 1, kSmallIslandSolve = 2, kJointCoupledSolve = 3 };
   std::vector<uint8_t> isChain_;
-  // Small islands holding a mass ratio (exactMassRatio), solved with their normal rows together:
+  // Small islands holding a mass ratio (exactMassRatio) or too deep for the sweeps, solved with their normal rows together:
   // per island the system it uses, or -1; the systems grow to the most such islands seen.
   std::vector<int32_t> denseOf_;
+  std::vector<int> denseRows_;  // per island: the rows its dense system has room for (0: none)
   std::vector<DenseNormalSystem> denseSystems_;
   std::vector<double> denseStorage_;  // their matrices, 3 per contact rows a side (grows, then reused)
   // Per body, zero between uses: the joints' response to one contact row (dynamics/joint_coupling.h).
