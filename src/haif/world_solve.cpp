@@ -301,8 +301,12 @@ void World::shareSpareIterations(int iterations) {
 bool World::tooDeepForSweeps(uint32_t k, int mainSweeps) const {
   const Island& isl = islands_.islands[k];
   const float deep = settings_.deepLayersPerSweep * float(mainSweeps);
-  return settings_.chainSolve && deep > 0.0f && isl.jointCount == 0 && layoutOf_[k] < 0 && isl.contactCount >= 2 &&
-         isl.contactCount <= uint32_t(DenseNormalSystem::kCheapLinks) && supportLayers(k) > deep;
+  // More contacts than bodies: no lone column, which the chain solve takes (stacks_N's 200 columns
+  // would each hold a dense system's storage for nothing). Those out of reach count: landing
+  // through its gaps, a column beside a box has few in reach, and it is then that it needs this.
+  return settings_.chainSolve && deep > 0.0f && isl.jointCount == 0 && layoutOf_[k] < 0 &&
+         isl.contactCount > isl.bodyCount && isl.contactCount <= uint32_t(DenseNormalSystem::kCheapLinks) &&
+         supportLayers(k) > deep;
 }
 
 // A small island with a mass ratio is solved together from a landing in it (a point closing faster
