@@ -256,8 +256,9 @@ class World {
   // together as a small island (contact_chain.h).
   enum ExactSolve : uint8_t { kChainSolve = 1, kSmallIslandSolve = 2, kJointCoupledSolve = 3 };
   std::vector<uint8_t> isChain_;
-  // Small islands holding a mass ratio (exactMassRatio) or too deep for the sweeps, solved with their normal rows together:
-  // per island the system it uses, or -1; the systems grow to the most such islands seen.
+  // Small islands holding a mass ratio (exactMassRatio) or too deep for the sweeps, solved with
+  // their normal rows together: per island the system it uses, or -1; the systems grow to the most
+  // such islands seen.
   std::vector<int32_t> denseOf_;
   std::vector<int> denseRows_;  // per island: the rows its dense system has room for (0: none)
   std::vector<DenseNormalSystem> denseSystems_;

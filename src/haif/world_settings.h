@@ -40,12 +40,12 @@ struct WorldSettings {
   /// joints and up to 32 contacts has them solved through its joint tree where a contact moves at most
   /// 1/(2 × this) as much through the joints as on its own bodies (dynamics/joint_coupling.h). 0: off.
   float exactMassRatio = 4.0f;
-  /// An island of up to 32 contacts and no joints more than this many layers of bodies deep
-  /// (World::supportLayers) per main sweep of the step has its normal rows solved together, as a
-  /// chain's are (a sweep passes a landing down about one layer). Columns of unit boxes landing through 1 cm gaps
-  /// with a box beside the bottom one (no chain), swept: 12 layers stood at 3 main sweeps, 14, 16 and
-  /// 20 fell; 25 fell at 5 and stood at 6; 30 fell at 6 and stood at 8: sweeps fail from ~4.7 layers
-  /// a sweep, and 3 leaves room. 0, or chainSolve off: off.
+  /// An island of up to 32 contacts, more contacts than bodies and no joints, more than this many
+  /// layers of bodies deep (World::supportLayers) per main sweep of the step, has its normal rows
+  /// solved together, as a chain's are (a sweep passes a landing down about one layer). Columns of
+  /// unit boxes landing through 1 cm gaps with a box beside the bottom one (no chain), swept: 12
+  /// layers stood at 3 main sweeps, 14, 16 and 20 fell; 25 fell at 5 and stood at 6; 30 fell at 6 and
+  /// stood at 8: sweeps fail from ~4.7 layers a sweep, and 3 leaves room. 0, or chainSolve off: off.
   float deepLayersPerSweep = 3.0f;
   bool reuseManifolds = true;       ///< keep a pair's manifold while its bodies keep still (manifold_cache.h)
   JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)
