@@ -167,9 +167,9 @@ class World {
   /// joints, not split, two bodies in contact whose masses differ by exactMassRatio or more, and a
   /// landing in it lately (counted down in its contacts' Contact::exactSteps).
   bool wantsSmallIslandSolve(uint32_t k);
-  /// Island k, of at most kCheapLinks contacts, no joints and not split, is deeper than this step's
-  /// `mainSweeps` carry a landing through (WorldSettings::deepLayersPerSweep): solved as a small
-  /// island too, with room for all of its rows.
+  /// Island k, of at most kCheapLinks contacts and more contacts than bodies (no lone column), no
+  /// joints and not split, is deeper than this step's `mainSweeps` carry a landing through
+  /// (WorldSettings::deepLayersPerSweep): solved as a small island too, with room for all its rows.
   bool tooDeepForSweeps(uint32_t k, int mainSweeps) const;
   /// Island k may have its contacts solved through its joints (dynamics/joint_coupling.h): joints and
   /// at most kCheapLinks contacts, not split. Whether it is, prepareIsland decides from its rows.

@@ -1,7 +1,7 @@
 // Small islands deeper than the main sweeps reach: a sweep passes a landing down one layer, so a
 // tall column that is no chain (a box beside its foot touches two of its boxes) bounced at 4
 // iterations, leaned and fell. Such islands have their normal rows solved together every step
-// (World::wantsSmallIslandSolve, WorldSettings::deepLayersPerSweep), as a chain's are.
+// (World::tooDeepForSweeps, WorldSettings::deepLayersPerSweep), as a chain's are.
 #include "support/physics_test_util.h"
 
 #include <gtest/gtest.h>
