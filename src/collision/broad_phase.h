@@ -21,7 +21,8 @@ class BroadPhase {
   /// with no pair, and sank 7.6 cm into it.
   float keptMargin = 0.05f;
 
-  void addBody(uint32_t body, const Aabb& tight, bool isStatic);
+  /// `marginScale`: the factor on both margins for this body (a small body's, haif/small_bodies.h).
+  void addBody(uint32_t body, const Aabb& tight, bool isStatic, float marginScale = 1.0f);
   /// Updates a moving body's box; returns true when the body left its fat box (re-inserted). A
   /// re-inserted box also reaches `lead` (m) further along the body's path: a body in free flight
   /// then leaves its fat box every few steps instead of every step.
@@ -29,7 +30,7 @@ class BroadPhase {
   /// True when a moving body's tight box still fits its fat box (update would do nothing). Read-only:
   /// bodies may be tested concurrently.
   bool fits(uint32_t body, const Aabb& tight) const {
-    return movingTree_.fatAabb(proxy_[body]).contains(tight.expanded(keptMargin));
+    return movingTree_.fatAabb(proxy_[body]).contains(tight.expanded(keptMargin * marginScale_[body]));
   }
   /// Gives a body that does not fit a new fat box (update() without its test). With `rebuildLater`
   /// the tree is left as it is: for many moves in one step, then rebuildMovingTree() before any query.
@@ -94,6 +95,7 @@ class BroadPhase {
   DynamicTree staticTree_;
   std::vector<int32_t> proxy_;
   std::vector<uint8_t> isStatic_;
+  std::vector<float> marginScale_;
   std::vector<uint8_t> movedFlag_;
   std::vector<Aabb> previousFat_;  // a moved body's fat box before it moved (empty: new this step)
   std::vector<uint32_t> moved_;

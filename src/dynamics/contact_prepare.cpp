@@ -263,7 +263,8 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
                 (rAxn.x * wA.x() + rAxn.y * wA.y() + rAxn.z * wA.z());
   // approach by the gap, no faster; a pair placed hovering within the skin counts as touching
   const F4 speculative = contact.hovering ? F4{} : (depth < 0.0f ? depth * invDt : F4{});
-  const F4 excess = simd4::clampNonNegative(depth - p.slop) * (p.beta * invDt);
+  // A small body's slop is scaled down with it (haif/small_bodies.h): 5 mm is a bead's whole size.
+  const F4 excess = simd4::clampNonNegative(depth - p.slop * contact.toleranceScale) * (p.beta * invDt);
   const F4 push = excess < p.maxPushVelocity ? excess : F4{} + p.maxPushVelocity;
   // A pinched body's push-outs oppose each other and cannot all be met; their impulses would grow
   // sweep after sweep and, warm started, step after step, until the body left at any speed.

@@ -41,9 +41,11 @@ void collideNow(const TurnProjectionInput& in, uint32_t a, uint32_t b, float& de
 // that by no more than crushRecover: what the step added goes, depth it began with only by a
 // bounded amount a step, as the solver's own push-out would (bodies spawned a metre into each other
 // were thrown apart in one step, one of them 0.38 m into the ground).
+// A small body's pair has all three scaled down with it (haif/small_bodies.h).
 float TurnProjection::target(uint32_t c) const {
-  const float start = in_.edges[c].deepest;
-  return std::max(std::max(settings_.keep, std::min(start, settings_.crushKeep)), start - settings_.crushRecover);
+  const float start = in_.edges[c].deepest, scale = (*in_.contacts)[c].toleranceScale;
+  return std::max(std::max(settings_.keep * scale, std::min(start, settings_.crushKeep * scale)),
+                  start - settings_.crushRecover * scale);
 }
 
 bool TurnProjection::mayExceed(uint32_t c) const {

@@ -2,6 +2,7 @@
 // (world_collision.cpp, world_joints.cpp, world_solve_order.cpp, world_solve.cpp,
 // world_solve_error.cpp, world_sleep.cpp; docs/architecture.md).
 #include "haif/world_internal.h"
+#include "haif/small_bodies.h"
 
 #include "core/pose_hash.h"
 #include "dynamics/integrator.h"
@@ -65,6 +66,7 @@ uint32_t World::addBody(const BodyDef& def) {
   bodies_.angularDamping[id] = def.angularDamping;
   shapes_.push_back(def.shape);
   volume_.push_back(unit.mass);
+  toleranceScale_.push_back(toleranceScale(def.shape, settings_.toleranceThickness));
   bounds_.push_back(computeAabb(def.shape, def.xf));
   speedBound_.addBody(def.shape);
   if (def.kind == BodyKind::Static && def.shape.type != ShapeType::Plane) {
@@ -76,7 +78,7 @@ uint32_t World::addBody(const BodyDef& def) {
   }
   if (def.shape.type == ShapeType::TriangleMesh) hasMesh_ = true;
   islandOfBody_.push_back(-1);
-  broadPhase_.addBody(id, bounds_[id], def.kind == BodyKind::Static);
+  broadPhase_.addBody(id, bounds_[id], def.kind == BodyKind::Static, toleranceScale_[id]);
   return id;
 }
 

@@ -213,6 +213,7 @@ class World {
   BodyStore bodies_;
   std::vector<Shape> shapes_;
   std::vector<float> volume_;
+  std::vector<float> toleranceScale_;  // per body: its factor on the contact tolerances (haif/small_bodies.h)
   std::vector<Aabb> bounds_;
   std::vector<WaterVolume> water_;
   bool hasMesh_ = false;

@@ -33,6 +33,7 @@ Contact World::newContact(uint32_t a, uint32_t b) const {
   // the one that rolls.
   c.rollingLever = std::max(bodies_.rollingResistance[a], bodies_.rollingResistance[b]) *
                    std::max(bodies_.rollingRadius[a], bodies_.rollingRadius[b]);
+  c.toleranceScale = std::min(toleranceScale_[a], toleranceScale_[b]);
   return c;
 }
 
@@ -184,9 +185,8 @@ void World::narrowPhase() {
   auto active = [&](uint32_t i) {
     return bodies_.kind[i] == BodyKind::Kinematic || (bodies_.kind[i] == BodyKind::Dynamic && !bodies_.asleep[i]);
   };
-  ManifoldReuseLimits reuseLimits;
-  reuseLimits.margin = settings_.contactMargin;
-  const float restingClosing = reuseLimits.slide + settings_.gravity.norm() * settings_.dt * settings_.dt;
+  const ManifoldReuseLimits reuseLimits;
+  const float fallStep = settings_.gravity.norm() * settings_.dt * settings_.dt;
   // Anchors are kept only while the solver pulls them (World::solverParams): a world where rest
   // damping holds the creep holds none (the pass was 5 % of many_pyramids' step at one sweep), and
   // sets them where its pairs stick once it pulls again.
@@ -214,7 +214,7 @@ void World::narrowPhase() {
       edge.a = c.a;
       edge.b = c.b;
       if (!active(c.a) && !active(c.b)) {  // sleeping or static on both sides: keep the manifold
-        finish(ci, c, edge, false, settings_.contactMargin);
+        finish(ci, c, edge, false, settings_.contactMargin * c.toleranceScale);
         continue;
       }
       // One side solved, the other static or kinematic: what pinches are made of (haif/pinch.h).
@@ -232,11 +232,18 @@ void World::narrowPhase() {
       // away, and the turned normal pushed a ball rolling at 1 cm/s up to 14 cm/s in 5 s. Those
       // pairs are cheap to collide and always made again (nor remembered).
       const bool reusable = settings_.reuseManifolds && !rolls(shapes_[c.a]) && !rolls(shapes_[c.b]);
-      if (reusable && rel < restingClosing && refreshManifold(c.cache, xa, xb, reuseLimits, c.manifold)) {
+      // A small body's pair has its tolerances scaled down (haif/small_bodies.h); 1 leaves them as set.
+      const float scale = c.toleranceScale;
+      const float margin = settings_.contactMargin * scale;
+      ManifoldReuseLimits pairLimits = reuseLimits;
+      pairLimits.slide *= scale;
+      pairLimits.margin = margin;
+      const float restingClosing = pairLimits.slide + fallStep;
+      if (reusable && rel < restingClosing && refreshManifold(c.cache, xa, xb, pairLimits, c.manifold)) {
         collision_.reusedFlag[ci] = 1;
         noteHovering(c, false, true, skin);
         anchor(c, xa, xb);
-        finish(ci, c, edge, againstImmovable, settings_.contactMargin);
+        finish(ci, c, edge, againstImmovable, margin);
         continue;  // same points and ids: the impulses stay where they are
       }
       const Manifold old = c.manifold;
@@ -247,7 +254,7 @@ void World::narrowPhase() {
       const float spin = (spinReach(c.a) + spinReach(c.b)) * settings_.dt;
       // A pair stays while its fat boxes overlap, but two in three of a churning pile's pairs are
       // farther apart than the margin: their tight boxes, widened by it, already say no point can be.
-      const float reach = settings_.contactMargin + rel + spin;
+      const float reach = margin + rel + spin;
       if (bounds_[c.a].expanded(reach).overlaps(bounds_[c.b])) collide(shapes_[c.a], xa, shapes_[c.b], xb, reach, c.manifold);
       else c.manifold.count = 0;
       if (reusable) rememberManifold(c.manifold, xa, xb, c.cache);

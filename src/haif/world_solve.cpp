@@ -345,7 +345,7 @@ bool World::wantsSmallIslandSolve(uint32_t k) {
       const ContactPoint& p = c.manifold.points[i];
       const Vec3 closing = bodies_.v[c.b] + bodies_.w[c.b].cross(p.position - pb) - bodies_.v[c.a] -
                            bodies_.w[c.a].cross(p.position - pa);
-      landing |= p.depth <= slop && p.normal.dot(closing) < -landingSpeed;
+      landing |= p.depth <= slop * c.toleranceScale && p.normal.dot(closing) < -landingSpeed;
     }
   }
   for (uint32_t j = 0; j < isl.contactCount; ++j) {

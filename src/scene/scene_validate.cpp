@@ -328,6 +328,7 @@ bool validateScene(const SceneDesc& scene, SceneIssue& issue) {
       !c.nonNegative("settings.skin", s.contact.skin) ||
       !c.nonNegative("settings.exact_mass_ratio", s.exactMassRatio) ||
       !c.nonNegative("settings.deep_layers_per_sweep", s.deepLayersPerSweep) ||
+      !c.nonNegative("settings.tolerance_thickness", s.toleranceThickness) ||
       !c.nonNegative("settings.momentum_layers", s.momentumLayers))
     return false;
   if (s.contact.beta > 1.0f) return c.bad("settings.beta", "must be in [0, 1] (got " + formatNumber(s.contact.beta) + ")");

@@ -139,7 +139,9 @@ TEST(Resting, RealSizeJengaTowerStands) {
 // masses ±10 %, still touching. Shared equally among a block's supports, its load left it a torque
 // the first step's sweeps did not take out: blocks tilted 0.2° in one step and the tower fell after
 // ~250 steps at 10 iterations, at once at 4. The cold start now divides each block's load so that it
-// balances (haif/support_balance.h), and the tower starts solved.
+// balances (haif/support_balance.h), and the tower starts solved. Neighbours in a layer are placed
+// up to 2 mm into each other sideways (0.5 mm apart, moved ±2 mm, turned ±2°): the 1.5 mm slop of
+// these 1.5 cm blocks (haif/small_bodies.h) pushes them apart, up to 1.9 mm; a falling tower moves cm.
 TEST(Resting, JitteredJengaTowerStandsAtFourAndTenIterations) {
   for (const unsigned seed : {1u, 2u}) {
     for (const int iterations : {4, 10}) {
@@ -149,7 +151,7 @@ TEST(Resting, JitteredJengaTowerStandsAtFourAndTenIterations) {
       addGroundPlane(w);
       std::mt19937 rng(seed);
       const JengaTower tower = addJengaTower(w, 2.04f, 0.0f, &rng);
-      EXPECT_LT(farthestMove(w, tower, 600), 1e-3f) << "seed " << seed << ", " << iterations << " iterations";
+      EXPECT_LT(farthestMove(w, tower, 600), 2.5e-3f) << "seed " << seed << ", " << iterations << " iterations";
       EXPECT_LT(w.kineticEnergy(), 1e-8) << "seed " << seed << ", " << iterations << " iterations";
     }
   }
