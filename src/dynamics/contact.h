@@ -39,7 +39,7 @@ struct Contact {
   /// bodies times the larger rolling radius (BodyStore::rollingRadius). 0: no rolling row.
   float rollingLever = 0.0f;
   Vec3 rollingImpulse = Vec3::Zero();  ///< accumulated rolling-resistance impulse on b, world (N m s)
-  /// The pair's factor on the contact tolerances (slop, skin, margins): its thinner body's
+  /// The pair's factor on the contact tolerances (slop, margins, manifold reuse): its thinner body's
   /// (haif/small_bodies.h), 1 for bodies of ordinary size. Set when the pair is made.
   float toleranceScale = 1.0f;
   bool touching() const { return manifold.count > 0; }

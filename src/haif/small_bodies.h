@@ -1,11 +1,13 @@
-// Small bodies: the contact tolerances are lengths (the slop, the skin, the speculative margin, the
-// broad phase's fat and kept margins, how far a kept manifold may slide), sized for bodies a few
-// centimetres thick and up. Against a bead of 4 mm they are its whole size: 5 mm of slop let one
-// bead sink into another and stay there, and 2 cm of margin (10 cm of fat box) gave a cup of 400
-// such beads 81000 pairs, 200 a bead, at 6-8 ms a step (7700 and 0.7-0.9 ms scaled). A body thinner than
-// WorldSettings::toleranceThickness scales them down with its thickness, pair by pair (the thinner
-// body decides), so a small world behaves as a scaled copy of a large one; bodies at or above it keep
-// the tolerances exactly (the same state to the bit).
+// Small bodies: the contact tolerances are lengths (the slop, the speculative margin, the broad
+// phase's fat and kept margins, how far a kept manifold may slide, the turn projection's depths),
+// sized for bodies a few centimetres thick and up. Against a bead of 4 mm they are its whole size:
+// 5 mm of slop let one bead sink into another and stay there, and 2 cm of margin (10 cm of fat box)
+// gave a cup of 400 such beads 81000 pairs, 200 a bead, at 6-8 ms a step (7700 and 0.7-0.9 ms
+// scaled). A body thinner than WorldSettings::toleranceThickness scales them down with its
+// thickness, pair by pair (the thinner body decides), so a small world behaves as a scaled copy of
+// a large one; bodies at or above it keep the tolerances exactly (the same state to the bit). The
+// skin is not scaled: it holds the gaps a scene placed, which it chose in metres (a Jenga tower's
+// 0.5 mm between 1.5 cm layers).
 #pragma once
 
 #include "collision/shape.h"

@@ -18,9 +18,10 @@ struct WorldSettings {
   /// push-out cap, friction anchors (dynamics/contact_solver.h). Its dt is not read: the World's is.
   SolverParams contact;
   float contactMargin = 0.02f;      ///< speculative distance (m) beyond which points are not reported
-  /// The contact tolerances (slop, skin, contact margin, broad-phase margins, manifold reuse) are
-  /// lengths for bodies at least this thick (m); a thinner body's pairs scale them by its thickness
-  /// over this (haif/small_bodies.h). 0: never scaled.
+  /// The contact tolerances (slop, contact margin, broad-phase margins, manifold reuse, the turn
+  /// projection's depths; not the skin) are lengths for bodies at least this thick (m); a thinner
+  /// body's pairs scale them by its thickness over this (haif/small_bodies.h). Read when a body is
+  /// added. 0: never scaled.
   float toleranceThickness = 0.05f;
   bool topDownOrder = true;         ///< solve the highest contacts of an island first
   bool accelerate = true;           ///< conjugate-gradient momentum between sweeps (contact_solver.h)
