@@ -185,7 +185,6 @@ void World::narrowPhase() {
   auto active = [&](uint32_t i) {
     return bodies_.kind[i] == BodyKind::Kinematic || (bodies_.kind[i] == BodyKind::Dynamic && !bodies_.asleep[i]);
   };
-  const ManifoldReuseLimits reuseLimits;
   const float fallStep = settings_.gravity.norm() * settings_.dt * settings_.dt;
   // Anchors are kept only while the solver pulls them (World::solverParams): a world where rest
   // damping holds the creep holds none (the pass was 5 % of many_pyramids' step at one sweep), and
@@ -193,7 +192,7 @@ void World::narrowPhase() {
   const bool anchors = solverParams().frictionAnchors;
   // Placed at rest: closing no faster than twice what gravity adds in a step (the cold start's rule).
   const float skin = settings_.contact.skin;
-  const float atRestClosing = 2.0f * settings_.gravity.norm() * settings_.dt * settings_.dt;
+  const float atRestClosing = 2.0f * fallStep;
   auto anchor = [&](Contact& c, const Transform& xa, const Transform& xb) {
     if (anchors) updateAnchor(c, xa, xb);
     else c.anchored = false;
@@ -213,8 +212,10 @@ void World::narrowPhase() {
       ContactEdge& edge = contactEdges_[ci];
       edge.a = c.a;
       edge.b = c.b;
+      // A small body's pair has its tolerances scaled down (haif/small_bodies.h); 1 leaves them as set.
+      const float margin = settings_.contactMargin * c.toleranceScale;
       if (!active(c.a) && !active(c.b)) {  // sleeping or static on both sides: keep the manifold
-        finish(ci, c, edge, false, settings_.contactMargin * c.toleranceScale);
+        finish(ci, c, edge, false, margin);
         continue;
       }
       // One side solved, the other static or kinematic: what pinches are made of (haif/pinch.h).
@@ -232,14 +233,11 @@ void World::narrowPhase() {
       // away, and the turned normal pushed a ball rolling at 1 cm/s up to 14 cm/s in 5 s. Those
       // pairs are cheap to collide and always made again (nor remembered).
       const bool reusable = settings_.reuseManifolds && !rolls(shapes_[c.a]) && !rolls(shapes_[c.b]);
-      // A small body's pair has its tolerances scaled down (haif/small_bodies.h); 1 leaves them as set.
-      const float scale = c.toleranceScale;
-      const float margin = settings_.contactMargin * scale;
-      ManifoldReuseLimits pairLimits = reuseLimits;
-      pairLimits.slide *= scale;
-      pairLimits.margin = margin;
-      const float restingClosing = pairLimits.slide + fallStep;
-      if (reusable && rel < restingClosing && refreshManifold(c.cache, xa, xb, pairLimits, c.manifold)) {
+      ManifoldReuseLimits reuseLimits;
+      reuseLimits.slide *= c.toleranceScale;
+      reuseLimits.margin = margin;
+      const float restingClosing = reuseLimits.slide + fallStep;
+      if (reusable && rel < restingClosing && refreshManifold(c.cache, xa, xb, reuseLimits, c.manifold)) {
         collision_.reusedFlag[ci] = 1;
         noteHovering(c, false, true, skin);
         anchor(c, xa, xb);
