@@ -474,6 +474,7 @@ void prepareRows(const BodyStore& bodies, const Joint& j, const JointGeometry& g
   // bound may be approached by at most C this step (speculative, no bounce), past it Baumgarte pushes back.
   int e = 0;
   jc.motor = false;
+  jc.motorThroughTree = false;
   auto addRow = [&](const JointRow& row, int slot, float bias, float relaxBias, float lo, float hi) {
     jc.extra[e] = row;
     const double k = rb.k(row, row);
@@ -666,9 +667,18 @@ float solveJointIteration(BodyStore& bodies, JointConstraint* js, size_t n, Join
                           bool useBias) {
   float residual = 0.0f;
   // Motors first, then the equality blocks (the tree at once, the others joint by joint), limits last
-  // so that they have the final word in each sweep.
+  // so that they have the final word in each sweep. A motor whose mass was measured through the tree
+  // (motor_mass.h) is answered by it before the next motor, the last one by the tree's own solve
+  // below: that mass is what the axis feels once the tree has answered, and a motor seeing another's
+  // push without that answer overshoots (robot_arm's hand chattered between 1 and 8 m/s).
+  size_t lastThroughTree = n;
   for (size_t k = 0; k < n; ++k)
-    if (js[k].motor) residual = std::max(residual, solveExtraRow(bodies, js[k], 0, omega, useBias));
+    if (js[k].motor && js[k].motorThroughTree) lastThroughTree = k;
+  for (size_t k = 0; k < n; ++k) {
+    if (!js[k].motor) continue;
+    residual = std::max(residual, solveExtraRow(bodies, js[k], 0, omega, useBias));
+    if (js[k].motorThroughTree && k != lastThroughTree && tree) tree->solve(bodies, js, useBias);
+  }
   if (tree && tree->size() > 0) {
     residual = std::max(residual, tree->solve(bodies, js, useBias));
     // The tree solves a taut rope as a rod: one that pushed (its ends closing) lets go.

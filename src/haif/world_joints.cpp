@@ -2,6 +2,8 @@
 // and their impulses kept per island.
 #include "haif/world_internal.h"
 
+#include "dynamics/motor_mass.h"
+
 namespace haif {
 
 uint32_t World::addJoint(const JointDef& def) {
@@ -136,8 +138,10 @@ void World::prepareJoints(uint32_t k, const SolverParams& sp) {
   const JointSolverParams& jp = settings_.joints;
   for (uint32_t j = 0; j < nj; ++j) prepareJointForStep(bodies_, joints_[ids[j]], ids[j], sp, jp, time, js[j]);
   if (sp.warmStart) warmStartJoints(bodies_, js, nj);
-  if (jp.treeSolve) jointTrees_[k].build(js, nj, parallelJoints_);
-  else
+  if (jp.treeSolve) {
+    jointTrees_[k].build(js, nj, parallelJoints_);
+    motorMassesThroughTree(js, nj, jointTrees_[k]);
+  } else
     for (uint32_t j = 0; j < nj; ++j) prepareSoftBlock(js[j]);
   // No tree holds these joints (a net): every row is swept, no stiffer than the sweeps converge on.
   const float hertz = jp.softHertzFor(jointMainSweeps_, sp.dt);
