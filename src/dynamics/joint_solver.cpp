@@ -666,19 +666,12 @@ float solveBlock(BodyStore& bodies, JointConstraint& c, float omega, bool useBia
 float solveJointIteration(BodyStore& bodies, JointConstraint* js, size_t n, JointTree* tree, float omega,
                           bool useBias) {
   float residual = 0.0f;
-  // Motors first, then the equality blocks (the tree at once, the others joint by joint), limits last
-  // so that they have the final word in each sweep. A motor whose mass was measured through the tree
-  // (motor_mass.h) is answered by it before the next motor, the last one by the tree's own solve
-  // below: that mass is what the axis feels once the tree has answered, and a motor seeing another's
-  // push without that answer overshoots (robot_arm's hand chattered between 1 and 8 m/s).
-  size_t lastThroughTree = n;
+  // Motors first (those solved together through the tree were, just before: solveTreeMotors), then
+  // the equality blocks (the tree at once, the others joint by joint), limits last so that they have
+  // the final word in each sweep.
   for (size_t k = 0; k < n; ++k)
-    if (js[k].motor && js[k].motorThroughTree) lastThroughTree = k;
-  for (size_t k = 0; k < n; ++k) {
-    if (!js[k].motor) continue;
-    residual = std::max(residual, solveExtraRow(bodies, js[k], 0, omega, useBias));
-    if (js[k].motorThroughTree && k != lastThroughTree && tree) tree->solve(bodies, js, useBias);
-  }
+    if (js[k].motor && !js[k].motorThroughTree)
+      residual = std::max(residual, solveExtraRow(bodies, js[k], 0, omega, useBias));
   if (tree && tree->size() > 0) {
     residual = std::max(residual, tree->solve(bodies, js, useBias));
     // The tree solves a taut rope as a rod: one that pushed (its ends closing) lets go.

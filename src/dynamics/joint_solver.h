@@ -64,7 +64,7 @@ struct JointConstraint {
   int8_t sidewaysRows;  // the last block rows: a taut rod's or rope's sideways stiffness (sidewaysStiffness)
   int extraRows;        // limit/motor rows in use
   bool motor;           // extra row 0 is a motor (solved before the block; limits come after it)
-  bool motorThroughTree;  // its mass is measured through the tree (motor_mass.h): the tree answers it at once
+  bool motorThroughTree;  // solved with the island's other motors through its tree (motor_mass.h), not swept
   bool inTree;          // the block is solved by the island's JointTree, not on its own
   uint8_t pullRows;     // bit i: block row i is a taut rope's length, its impulse stays <= 0 (pulling)
   int8_t ownRows;       // block rows of its own joint (the first ones; mergeParallelJoints may add more)

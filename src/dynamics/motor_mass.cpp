@@ -1,5 +1,6 @@
 #include "dynamics/motor_mass.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace haif {
@@ -8,72 +9,182 @@ namespace {
 
 using Vec3d = Eigen::Vector3d;
 
-/// Below this fraction of its own two bodies' K the axis is held by the tree (a loop, a merged
-/// joint): the mass would be large and rest on the tree's rounding, so the row keeps its own.
+/// Motors solved together, at most: S is factored every step (the cube of the count) and each motor
+/// costs a solve of the tree to make. Islands with more keep the sweep's motor pass.
+constexpr uint32_t kMaxTreeMotors = 16;
+/// A motor whose S diagonal is below this fraction of its own two bodies' (the tree locks its axis:
+/// a loop, a merged joint) would ask large impulses of the tree's rounding: the island keeps the sweep.
 constexpr double kHeldAxis = 1e-3;
-
-/// Each such motor costs a tree solve per sweep (the tree answers it before the next motor): past
-/// this many motor-joints of work a step (32 servos along a 32-link arm) motors keep their own mass.
-constexpr uint64_t kMotorTreeWork = 1024;
+/// Projected Gauss-Seidel passes over S when a motor meets its force bound.
+constexpr int kBoundPasses = 32;
 
 Vec3d toDouble(const Vec3& v) { return v.cast<double>(); }
 
-}  // namespace
+// A unit push on joint c's row r: the velocity change it gives each of c's two bodies.
+struct Push {
+  uint32_t a, b;
+  bool dynA, dynB;
+  Vec3d va, wa, vb, wb;
+  Push(const JointConstraint& c, const JointRow& r)
+      : a(c.a), b(c.b), dynA(c.dynA), dynB(c.dynB),
+        va(c.dynA ? Vec3d(-double(c.invMassA) * toDouble(r.lin)) : Vec3d::Zero()),
+        wa(c.dynA ? Vec3d(-toDouble(r.iAngA)) : Vec3d::Zero()),
+        vb(c.dynB ? Vec3d(double(c.invMassB) * toDouble(r.lin)) : Vec3d::Zero()),
+        wb(c.dynB ? Vec3d(toDouble(r.iAngB)) : Vec3d::Zero()) {}
+  void at(uint32_t body, bool dynamic, Vec3d& v, Vec3d& w) const {
+    v.setZero();
+    w.setZero();
+    if (!dynamic) return;
+    if (dynA && body == a) v += va, w += wa;
+    if (dynB && body == b) v += vb, w += wb;
+  }
+  // Row r of joint c's velocity under the push.
+  double rowVelocity(const JointConstraint& c, const JointRow& r) const {
+    Vec3d v1, w1, v2, w2;
+    at(c.a, c.dynA, v1, w1);
+    at(c.b, c.dynB, v2, w2);
+    return toDouble(r.lin).dot(v2 - v1) + toDouble(r.angB).dot(w2) - toDouble(r.angA).dot(w1);
+  }
+};
 
-void motorMassesThroughTree(JointConstraint* js, uint32_t n, JointTree& tree) {
-  if (tree.size() == 0) return;
-  uint32_t motors = 0;
-  for (uint32_t m = 0; m < n; ++m) motors += js[m].motor ? 1u : 0u;
-  if (motors == 0 || uint64_t(motors) * tree.size() > kMotorTreeWork) return;
-  for (uint32_t m = 0; m < n; ++m) {
-    JointConstraint& motor = js[m];
-    if (!motor.motor || !(motor.extraMass[0] > 0.0f)) continue;
-    const JointRow& row = motor.extra[0];
-    // M⁻¹ Jᵀ of a unit push on the motor row, at its two bodies.
-    const Vec3d dvA = motor.dynA ? Vec3d(-double(motor.invMassA) * toDouble(row.lin)) : Vec3d::Zero();
-    const Vec3d dwA = motor.dynA ? Vec3d(-toDouble(row.iAngA)) : Vec3d::Zero();
-    const Vec3d dvB = motor.dynB ? Vec3d(double(motor.invMassB) * toDouble(row.lin)) : Vec3d::Zero();
-    const Vec3d dwB = motor.dynB ? Vec3d(toDouble(row.iAngB)) : Vec3d::Zero();
-    auto pushAt = [&](uint32_t body, bool dynamic, Vec3d& v, Vec3d& w) {
-      v.setZero();
-      w.setZero();
-      if (!dynamic) return;
-      if (motor.dynA && body == motor.a) v += dvA, w += dwA;
-      if (motor.dynB && body == motor.b) v += dvB, w += dwB;
-    };
-    // g: each tree row's velocity under the push; x = A⁻¹ g in the tree's factors; K −= g · x.
-    double coupled = 0.0;
-    for (uint32_t e = 0; e < tree.size(); ++e) {
-      const JointConstraint& jc = js[tree.jointAt(e)];
-      double* g = tree.rowsOf(e);
-      Vec3d va, wa, vb, wb;
-      pushAt(jc.a, jc.dynA, va, wa);
-      pushAt(jc.b, jc.dynB, vb, wb);
-      for (int i = 0; i < jc.blockRows; ++i) {
-        const JointRow& r = jc.block[i];
-        g[i] = toDouble(r.lin).dot(vb - va) + toDouble(r.angB).dot(wb) - toDouble(r.angA).dot(wa);
-      }
-    }
-    tree.solveRows();  // x replaces g in place: g is made again, row by row, for g · x
-    for (uint32_t e = 0; e < tree.size(); ++e) {
-      const JointConstraint& jc = js[tree.jointAt(e)];
-      const double* x = tree.rowsOf(e);
-      Vec3d va, wa, vb, wb;
-      pushAt(jc.a, jc.dynA, va, wa);
-      pushAt(jc.b, jc.dynB, vb, wb);
-      for (int i = 0; i < jc.blockRows; ++i) {
-        const JointRow& r = jc.block[i];
-        const double g = toDouble(r.lin).dot(vb - va) + toDouble(r.angB).dot(wb) - toDouble(r.angA).dot(wa);
-        coupled += g * x[i];
-      }
-    }
-    const double own = 1.0 / double(motor.extraMass[0]);
-    const double through = own - coupled;
-    if (through > kHeldAxis * own && through <= own * (1.0 + 1e-6)) {
-      motor.extraMass[0] = float(1.0 / through);
-      motor.motorThroughTree = true;
+// In-place Cholesky of an SPD matrix (row-major, lower triangle); false when not positive definite.
+bool cholesky(double* s, uint32_t m) {
+  for (uint32_t j = 0; j < m; ++j) {
+    double d = s[j * m + j];
+    for (uint32_t k = 0; k < j; ++k) d -= s[j * m + k] * s[j * m + k];
+    if (!(d > 0.0)) return false;
+    d = std::sqrt(d);
+    s[j * m + j] = d;
+    for (uint32_t i = j + 1; i < m; ++i) {
+      double v = s[i * m + j];
+      for (uint32_t k = 0; k < j; ++k) v -= s[i * m + k] * s[j * m + k];
+      s[i * m + j] = v / d;
     }
   }
+  return true;
+}
+
+}  // namespace
+
+void prepareTreeMotors(JointConstraint* js, uint32_t n, JointTree& tree, TreeMotors& motors) {
+  motors.count = 0;
+  if (tree.size() == 0) return;
+  uint32_t m = 0;
+  for (uint32_t j = 0; j < n; ++j) m += js[j].motor ? 1u : 0u;
+  if (m == 0 || m > kMaxTreeMotors) return;
+  const uint32_t rows = kJointBlockRows * tree.size();
+  motors.joint.resize(m);
+  motors.push.resize(size_t(m) * rows);
+  motors.answer.resize(size_t(m) * rows);
+  motors.system.resize(size_t(m) * m * 2);  // S, then its Cholesky factor
+  for (uint32_t j = 0, a = 0; j < n; ++j)
+    if (js[j].motor) motors.joint[a++] = j;
+  // G and A⁻¹ G per motor, from the tree's own factors.
+  for (uint32_t a = 0; a < m; ++a) {
+    const JointConstraint& motor = js[motors.joint[a]];
+    const Push push(motor, motor.extra[0]);
+    double* g = &motors.push[size_t(a) * rows];
+    for (uint32_t e = 0; e < tree.size(); ++e) {
+      const JointConstraint& jc = js[tree.jointAt(e)];
+      double* slot = tree.rowsOf(e);
+      for (int i = 0; i < kJointBlockRows; ++i) {
+        slot[i] = i < jc.blockRows ? push.rowVelocity(jc, jc.block[i]) : 0.0;
+        g[kJointBlockRows * e + i] = slot[i];
+      }
+    }
+    tree.solveRows();
+    double* x = &motors.answer[size_t(a) * rows];
+    for (uint32_t e = 0; e < tree.size(); ++e) std::copy_n(tree.rowsOf(e), kJointBlockRows, x + kJointBlockRows * e);
+  }
+  // S = J M⁻¹ Jᵀ (motors sharing a body) − G · A⁻¹ G.
+  double* S = motors.system.data();
+  for (uint32_t a = 0; a < m; ++a) {
+    const JointConstraint& ma = js[motors.joint[a]];
+    for (uint32_t b = 0; b < m; ++b) {
+      const JointConstraint& mb = js[motors.joint[b]];
+      double s = Push(mb, mb.extra[0]).rowVelocity(ma, ma.extra[0]);
+      const double* g = &motors.push[size_t(a) * rows];
+      const double* x = &motors.answer[size_t(b) * rows];
+      for (uint32_t r = 0; r < rows; ++r) s -= g[r] * x[r];
+      S[a * m + b] = s;
+    }
+  }
+  for (uint32_t a = 0; a < m; ++a)  // symmetric up to the tree's rounding
+    for (uint32_t b = 0; b < a; ++b) S[a * m + b] = S[b * m + a] = 0.5 * (S[a * m + b] + S[b * m + a]);
+  for (uint32_t a = 0; a < m; ++a) {
+    const double own = 1.0 / double(js[motors.joint[a]].extraMass[0]);
+    if (!(S[a * m + a] > kHeldAxis * own)) return;
+  }
+  double* L = S + size_t(m) * m;
+  std::copy_n(S, size_t(m) * m, L);
+  if (!cholesky(L, m)) return;
+  motors.count = m;
+  for (uint32_t a = 0; a < m; ++a) js[motors.joint[a]].motorThroughTree = true;
+}
+
+float solveTreeMotors(BodyStore& bodies, JointConstraint* js, const TreeMotors& motors, bool useBias) {
+  const uint32_t m = motors.count;
+  if (m == 0) return 0.0f;
+  const double* S = motors.system.data();
+  const double* L = S + size_t(m) * m;
+  double rhs[kMaxTreeMotors], d[kMaxTreeMotors];
+  auto velocity = [&](uint32_t body, bool angular) -> Vec3 {
+    if (body == kWorldBody) return Vec3::Zero();
+    return angular ? bodies.w[body] : bodies.v[body];
+  };
+  for (uint32_t a = 0; a < m; ++a) {
+    const JointConstraint& c = js[motors.joint[a]];
+    const JointRow& r = c.extra[0];
+    const float cdot = r.lin.dot(velocity(c.b, false) - velocity(c.a, false)) + r.angB.dot(velocity(c.b, true)) -
+                       r.angA.dot(velocity(c.a, true));
+    rhs[a] = -(double(cdot) + double(useBias ? c.extraBias[0] : c.extraRelaxBias[0]));
+  }
+  // Unbounded: S d = rhs by the factor.
+  for (uint32_t a = 0; a < m; ++a) {
+    double v = rhs[a];
+    for (uint32_t k = 0; k < a; ++k) v -= L[a * m + k] * d[k];
+    d[a] = v / L[a * m + a];
+  }
+  for (uint32_t a = m; a-- > 0;) {
+    double v = d[a];
+    for (uint32_t k = a + 1; k < m; ++k) v -= L[k * m + a] * d[k];
+    d[a] = v / L[a * m + a];
+  }
+  // A motor past its force: clamped, and the others solved again against it (projected Gauss-Seidel).
+  auto bounded = [&](uint32_t a, double change) {
+    const JointConstraint& c = js[motors.joint[a]];
+    const double lambda = std::clamp(double(c.extraImpulse[0]) + change, double(c.extraLo[0]), double(c.extraHi[0]));
+    return lambda - double(c.extraImpulse[0]);
+  };
+  bool clamped = false;
+  for (uint32_t a = 0; a < m; ++a) {
+    const double b = bounded(a, d[a]);
+    clamped |= b != d[a];
+    d[a] = b;
+  }
+  for (int pass = 0; clamped && pass < kBoundPasses; ++pass)
+    for (uint32_t a = 0; a < m; ++a) {
+      double v = rhs[a];
+      for (uint32_t b = 0; b < m; ++b) v -= S[a * m + b] * d[b];
+      d[a] = bounded(a, d[a] + v / S[a * m + a]);
+    }
+  float largest = 0.0f;
+  for (uint32_t a = 0; a < m; ++a) {
+    JointConstraint& c = js[motors.joint[a]];
+    const float l = float(d[a]);
+    c.extraImpulse[0] += l;
+    const JointRow& r = c.extra[0];
+    if (c.dynA) {
+      bodies.v[c.a] -= (c.invMassA * l) * r.lin;
+      bodies.w[c.a] -= l * r.iAngA;
+    }
+    if (c.dynB) {
+      bodies.v[c.b] += (c.invMassB * l) * r.lin;
+      bodies.w[c.b] += l * r.iAngB;
+    }
+    largest = std::max(largest, float(std::fabs(d[a]) * S[a * m + a]));
+  }
+  return largest;
 }
 
 }  // namespace haif

@@ -1,24 +1,41 @@
-// A motor's effective mass through the joint tree. A motor row is swept before the tree (joint_solver):
-// with the mass of its own two bodies it asks too little of an arm whose links carry more links, the
-// tree then shares its push with all of them, and the sweeps reach the motor's speed a fraction at a
-// time. A servo following a path then lags, its position error grows its speed, and it overshoots:
-// robot_arm's 2 kg hand swung at up to 16 m/s at 4 iterations (2.9 m/s converged) and was caught by
-// the speed bound ~370 times a minute. Measured through the tree, the row's mass is what the tree
-// lets the axis feel, and one sweep brings a lone motor to its speed.
+// Servos along a jointed arm, solved together through the joint tree. A motor row swept with the mass
+// of its own two bodies asks too little of an arm whose links carry more links: the tree shares its
+// push with all of them, and the sweeps reach the motor's speed a fraction at a time. A servo
+// following a path then lags, its position error grows its speed, and it overshoots: robot_arm's
+// 2 kg hand swung at up to 16 m/s at 4 iterations (2.9 m/s converged) and the speed bound caught a
+// body 699 times in a minute. Measured through the tree one by one, six servos stacked in a mast
+// still fought each other sweep after sweep (each turns everything above it). So the motors of a
+// tree are solved together: S Δλ = −(J v + b) with S = J M⁻¹ Jᵀ − Gᵀ A⁻¹ G over the motors (G: the
+// tree rows' velocity under each motor's push, A: the tree's system), the tree's answer to their
+// pushes then comes from its own solve, which follows in the sweep (solveJointIteration).
 #pragma once
 
+#include "core/body_store.h"
 #include "dynamics/joint_solver.h"
 #include "dynamics/joint_tree.h"
 
 #include <cstdint>
+#include <vector>
 
 namespace haif {
 
-/// Sets each motor row's mass from K = J M⁻¹ Jᵀ − gᵀ A⁻¹ g, with g the tree rows' velocity under a unit
-/// push of the motor and A the tree's system: what is left of the axis once the tree answers. Rows
-/// the tree (nearly) locks keep their own two bodies' mass. Marks the motors it sets
-/// (JointConstraint::motorThroughTree): each sweep must let the tree answer each before the next
-/// (solveJointIteration). Call after tree.build at the same rows.
-void motorMassesThroughTree(JointConstraint* js, uint32_t n, JointTree& tree);
+/// An island's motors seen through its joint tree: their system S, made once a step. Buffers grow to
+/// the largest island seen and are reused.
+struct TreeMotors {
+  uint32_t count = 0;              ///< motors solved here (0: none, or the island is past the cap)
+  std::vector<uint32_t> joint;     ///< index into the island's joints, per motor
+  std::vector<double> system;      ///< S, count x count, row-major
+  std::vector<double> push, answer;  ///< per motor, the tree's rows: G under its push, A⁻¹ G (scratch)
+};
+
+/// Makes `motors` for the island's joints `js` at the rows prepared for this step, after tree.build.
+/// Marks them (JointConstraint::motorThroughTree) so that the sweep's own motor pass leaves them.
+/// Past kMaxTreeMotors motors, or a motor whose axis the tree (nearly) locks, none are taken.
+void prepareTreeMotors(JointConstraint* js, uint32_t n, JointTree& tree, TreeMotors& motors);
+
+/// One sweep's motors: the impulses that bring every motor to its speed once the tree answers
+/// (projected onto their force bounds), applied to the motors' bodies. The tree's solve must follow.
+/// Returns the largest velocity change asked of a motor row.
+float solveTreeMotors(BodyStore& bodies, JointConstraint* js, const TreeMotors& motors, bool useBias);
 
 }  // namespace haif

@@ -15,6 +15,7 @@
 #include "dynamics/joint_solver.h"
 #include "dynamics/joint_coupling.h"
 #include "dynamics/joint_tree.h"
+#include "dynamics/motor_mass.h"
 #include "haif/island_split.h"
 #include "haif/islands.h"
 #include "haif/iteration_controller.h"
@@ -316,6 +317,7 @@ class World {
   std::vector<Joint> joints_;
   std::vector<JointConstraint> jointConstraints_;  // solver rows, grouped by island like constraints_
   std::vector<JointTree> jointTrees_;              // per island slot: factorisation buffers, reused
+  std::vector<TreeMotors> treeMotors_;             // per island slot: its motors through its tree
   std::vector<float> jointStiffness_;              // per body, this step (N m)
   PairMap jointedPairs_;                           // joints per pair of bodies (both not the world)
   bool parallelJoints_ = false;                    // some pair has two joints: merge their rows

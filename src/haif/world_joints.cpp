@@ -2,8 +2,6 @@
 // and their impulses kept per island.
 #include "haif/world_internal.h"
 
-#include "dynamics/motor_mass.h"
-
 namespace haif {
 
 uint32_t World::addJoint(const JointDef& def) {
@@ -140,7 +138,7 @@ void World::prepareJoints(uint32_t k, const SolverParams& sp) {
   if (sp.warmStart) warmStartJoints(bodies_, js, nj);
   if (jp.treeSolve) {
     jointTrees_[k].build(js, nj, parallelJoints_);
-    motorMassesThroughTree(js, nj, jointTrees_[k]);
+    prepareTreeMotors(js, nj, jointTrees_[k], treeMotors_[k]);
   } else
     for (uint32_t j = 0; j < nj; ++j) prepareSoftBlock(js[j]);
   // No tree holds these joints (a net): every row is swept, no stiffer than the sweeps converge on.

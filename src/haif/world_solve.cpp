@@ -96,6 +96,9 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias, bool restartDirection, 
   }
   if (isl.jointCount > 0) {
     JointTree* tree = settings_.joints.treeSolve ? &jointTrees_[k] : nullptr;
+    // Servos through the tree, which answers them in its solve just after (dynamics/motor_mass.h).
+    if (tree) r.residual = std::max(r.residual, solveTreeMotors(bodies_, jointConstraints_.data() + isl.firstJoint,
+                                                                treeMotors_[k], useBias));
     r.residual = std::max(r.residual, solveJointIteration(bodies_, jointConstraints_.data() + isl.firstJoint,
                                                           isl.jointCount, tree, omega, useBias));
   }
@@ -465,7 +468,10 @@ void World::solve(int iterations) {
       storage += DenseNormalSystem::doublesFor(denseRows_[k]);
     }
   jointConstraints_.resize(islands_.joints.size());
-  if (jointTrees_.size() < m) jointTrees_.resize(m);  // grows to the most islands seen, then reused
+  if (jointTrees_.size() < m) {  // both grow to the most islands seen, then are reused
+    jointTrees_.resize(m);
+    treeMotors_.resize(m);
+  }
   if (!joints_.empty()) stiffenJointedBodies();
   spare_.iterations.assign(m, 0);
   spare_.residual.assign(m, 0.0f);
