@@ -143,8 +143,8 @@ class World {
   /// Against gravity (+y without gravity): what top-down order and strips are measured along.
   Vec3 upDirection() const;
   /// Island k's top-down keys (in island order): when the island is no chain only because of
-  /// contacts that cannot act this step (cannotActThisStep: a thin plate's contact with the plate two
-  /// below, past the one between, with nothing closing it fast), their keys are moved to its end, so
+  /// contacts whose points are all further apart than the slop and a fall's step (a thin plate's
+  /// contact with the plate two below, past the one between), their keys are moved to its end, so
   /// the chain before them is solved exactly and they are swept after it (world_solve_order.cpp).
   /// Returns how many were moved.
   uint32_t moveOutOfReachToTail(uint32_t k, uint64_t* keys);
@@ -157,9 +157,6 @@ class World {
   /// Every point of contact `ci` is farther apart than `reach` (reachOfAStep): nothing can close it
   /// this step unless something moves fast, so it holds nothing up.
   bool outOfReach(uint32_t ci, float reach) const { return contactEdges_[ci].nearest < -reach; }
-  /// Out of reach, and its bodies do not close it within the step either: it cannot act this step.
-  bool cannotActThisStep(uint32_t ci, float reach) const { return outOfReach(ci, reach) && !closesWithinStep(ci, reach); }
-  bool closesWithinStep(uint32_t ci, float reach) const;
   /// `restartDirection`: the island's momentum direction restarts from the last sweep's change
   /// (see solveIteration); only for joint-free islands swept plainly or wide. `measureChange`:
   /// fill SweepResult::change, which only the momentum step needs.

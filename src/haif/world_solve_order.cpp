@@ -51,8 +51,8 @@ void World::orderContactsTopDown() {
 // ones that reach past a plate to the one below it (the 2 cm margin spans the plate). They made the
 // island no chain, and its 30 layers were swept: at 4 to 8 iterations the stack sank into itself
 // and sprang back for the whole minute (plates 0.45 m into each other at 4). Such contacts cannot
-// act this step unless something closes them fast (closesWithinStep), so they go to the end of the
-// order: the chain before them is solved exactly and they are swept after it, each sweep. Only an island that has
+// act this step unless something closes them fast, so they go to the end of the order: the chain
+// before them is solved exactly and they are swept after it, each sweep. Only an island that has
 // more contacts than bodies (no chain) and would not without them is reordered.
 uint32_t World::moveOutOfReachToTail(uint32_t k, uint64_t* keys) {
   const Island& isl = islands_.islands[k];
@@ -62,7 +62,7 @@ uint32_t World::moveOutOfReachToTail(uint32_t k, uint64_t* keys) {
   const uint32_t* ids = islands_.contacts.data() + isl.firstContact;
   // A pile has more contacts in reach than bodies, and stops here.
   const float reach = reachOfAStep();
-  auto apart = [&](uint32_t j) { return cannotActThisStep(ids[j], reach); };
+  auto apart = [&](uint32_t j) { return outOfReach(ids[j], reach); };
   uint32_t near = 0;
   for (uint32_t j = 0; j < isl.contactCount && near <= isl.bodyCount; ++j) near += apart(j) ? 0u : 1u;
   if (near > isl.bodyCount || near < 2) return 0;  // a chain has two links at least (prepareChain)
@@ -72,22 +72,6 @@ uint32_t World::moveOutOfReachToTail(uint32_t k, uint64_t* keys) {
     order_.contactHeight[ids[j]] = std::numeric_limits<float>::lowest();
   }
   return isl.contactCount - near;
-}
-
-// A body that approaches fast closes more than a fall's step: a 100 kg box landing at 2.1 m/s on a
-// stack of five 4 mm plates was 3.2 cm above the top one at the start of the step, out of reach by
-// distance alone. Swept after the plates' chain, at a mass ratio of 100 it took a fraction of the
-// box's momentum a sweep, and the box drove the plates into each other and into the ground.
-bool World::closesWithinStep(uint32_t ci, float reach) const {
-  const Contact& c = contacts_[ci];
-  const Vec3 &pa = bodies_.xf[c.a].p, &pb = bodies_.xf[c.b].p;
-  for (int i = 0; i < c.manifold.count; ++i) {
-    const ContactPoint& p = c.manifold.points[i];
-    const Vec3 closing = bodies_.v[c.b] + bodies_.w[c.b].cross(p.position - pb) - bodies_.v[c.a] -
-                         bodies_.w[c.a].cross(p.position - pa);
-    if (p.depth - p.normal.dot(closing) * settings_.dt >= -reach) return true;
-  }
-  return false;
 }
 
 // A contact that just formed has no impulse to warm start from. In a pile created at rest every
