@@ -149,14 +149,19 @@ class World {
   /// Returns how many were moved.
   uint32_t moveOutOfReachToTail(uint32_t k, uint64_t* keys);
   uint32_t tailOf(uint32_t k) const { return order_.tail[k]; }
-  /// How far apart (m) a contact's points may be and still close this step: the slop and a fall's
-  /// step (g dt²). Taken once per pass, not per contact (a square root).
-  float reachOfAStep() const {
-    return settings_.contact.slop + settings_.gravity.norm() * settings_.dt * settings_.dt;
+  /// How far (m) two bodies fall towards each other in a step: g dt². Taken once per pass, not per
+  /// contact (a square root).
+  float fallOfAStep() const { return settings_.gravity.norm() * settings_.dt * settings_.dt; }
+  /// Every point of contact `ci` is farther apart than its slop (scaled to its bodies, as the contact's
+  /// own: haif/small_bodies.h) and a fall's step (`fall`, fallOfAStep): nothing can close it this step
+  /// unless something moves fast, so it holds nothing up. Unscaled, the 5 mm slop reached past a 4 mm
+  /// plate to the one below it: a stack of such plates was no chain, and swept at 4 iterations it sank
+  /// half a plate into itself.
+  bool outOfReach(uint32_t ci, float fall) const {
+    const ContactEdge& e = contactEdges_[ci];
+    const float scale = std::min(toleranceScale_[e.a], toleranceScale_[e.b]);
+    return e.nearest < -(settings_.contact.slop * scale + fall);
   }
-  /// Every point of contact `ci` is farther apart than `reach` (reachOfAStep): nothing can close it
-  /// this step unless something moves fast, so it holds nothing up.
-  bool outOfReach(uint32_t ci, float reach) const { return contactEdges_[ci].nearest < -reach; }
   /// `restartDirection`: the island's momentum direction restarts from the last sweep's change
   /// (see solveIteration); only for joint-free islands swept plainly or wide. `measureChange`:
   /// fill SweepResult::change, which only the momentum step needs.

@@ -148,6 +148,29 @@ LaneBatches World::lanesOf(uint32_t k) {
 // The lanes hold no rolling row: a world with rolling resistance sweeps every island as one.
 bool World::isWide(uint32_t k) const { return settings_.wideSolve && !isChain_[k] && !hasRolling_; }
 
+// A contact out of reach by distance (the tail, moveOutOfReachToTail) that its bodies close within
+// the step: a 100 kg box 3.2 cm above a stack of five 4 mm plates, landing at 2.1 m/s. Swept after
+// the plates' chain, at a mass ratio of 100 it took a fraction of the box's momentum a sweep: the box
+// pressed the top plate 4.6 mm into the next at 10 sweeps and, at 48-64, drove the plates through
+// each other to the ground. Counting such contacts in reach for every island instead made pours rest
+// deeper (landing islands that were chains were then swept); only an island with a small-island
+// system (a mass ratio, or deep) takes them, into that system.
+static bool anyClosesWithinStep(const Contact* contacts, const BodyStore& bodies, const uint32_t* ids, uint32_t n,
+                                float dt, float slop, float fall) {
+  for (uint32_t j = 0; j < n; ++j) {
+    const Contact& c = contacts[ids[j]];
+    const float reach = slop * c.toleranceScale + fall;  // as World::outOfReach
+    const Vec3 &pa = bodies.xf[c.a].p, &pb = bodies.xf[c.b].p;
+    for (int i = 0; i < c.manifold.count; ++i) {
+      const ContactPoint& p = c.manifold.points[i];
+      const Vec3 closing = bodies.v[c.b] + bodies.w[c.b].cross(p.position - pb) - bodies.v[c.a] -
+                           bodies.w[c.a].cross(p.position - pa);
+      if (p.depth - p.normal.dot(closing) * dt >= -reach) return true;
+    }
+  }
+  return false;
+}
+
 void World::solveIslands(int iterations) {
   const SolverParams sp = solverParams();
   const float tol = settings_.residualTolerance;
@@ -167,13 +190,25 @@ void World::solveIslands(int iterations) {
       }
     });
     if (slots) copyVelocitiesIn(k);
-    isChain_[k] = settings_.chainSolve && layoutOf_[k] < 0 && isl.jointCount == 0 &&
-                  prepareChain(contacts_.data(), cs, isl.contactCount - tailOf(k), chainMark_.data(),
-                               chainLinks_.data() + isl.firstContact);
-    if (!isChain_[k] && denseOf_[k] >= 0 && isl.jointCount == 0 &&
-        prepareSmallIsland(contacts_.data(), cs, isl.contactCount - tailOf(k), chainLinks_.data() + isl.firstContact,
-                           denseRows_[k]))
+    // A landing through the tail (a contact out of reach by distance that its bodies close within the
+    // step): the whole island goes into its small-island system, the tail no longer behind a chain.
+    const bool landsThroughTail = denseOf_[k] >= 0 && tailOf(k) > 0 && isl.jointCount == 0 &&
+                                  anyClosesWithinStep(contacts_.data(), bodies_, ids + isl.contactCount - tailOf(k),
+                                                      tailOf(k), settings_.dt, settings_.contact.slop, fallOfAStep()) &&
+                                  prepareSmallIsland(contacts_.data(), cs, isl.contactCount,
+                                                     chainLinks_.data() + isl.firstContact, denseRows_[k]);
+    if (landsThroughTail) {
+      order_.tail[k] = 0;
       isChain_[k] = kSmallIslandSolve;
+    } else {
+      isChain_[k] = settings_.chainSolve && layoutOf_[k] < 0 && isl.jointCount == 0 &&
+                    prepareChain(contacts_.data(), cs, isl.contactCount - tailOf(k), chainMark_.data(),
+                                 chainLinks_.data() + isl.firstContact);
+      if (!isChain_[k] && denseOf_[k] >= 0 && isl.jointCount == 0 &&
+          prepareSmallIsland(contacts_.data(), cs, isl.contactCount - tailOf(k),
+                             chainLinks_.data() + isl.firstContact, denseRows_[k]))
+        isChain_[k] = kSmallIslandSolve;
+    }
     const VelocityView velocities = velocitiesOf(k);
     if (sp.warmStart) forEachStrip(k, [&](uint32_t b, uint32_t e) {
       warmStart(velocities, cs + b, e - b);

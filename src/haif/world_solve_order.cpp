@@ -61,8 +61,8 @@ uint32_t World::moveOutOfReachToTail(uint32_t k, uint64_t* keys) {
     return 0;
   const uint32_t* ids = islands_.contacts.data() + isl.firstContact;
   // A pile has more contacts in reach than bodies, and stops here.
-  const float reach = reachOfAStep();
-  auto apart = [&](uint32_t j) { return outOfReach(ids[j], reach); };
+  const float fall = fallOfAStep();
+  auto apart = [&](uint32_t j) { return outOfReach(ids[j], fall); };
   uint32_t near = 0;
   for (uint32_t j = 0; j < isl.contactCount && near <= isl.bodyCount; ++j) near += apart(j) ? 0u : 1u;
   if (near > isl.bodyCount || near < 2) return 0;  // a chain has two links at least (prepareChain)
@@ -100,11 +100,11 @@ void World::estimateColdImpulses() {
   // A contact out of reach holds nothing up: counted as a support, it took a share of the load (in a
   // Jenga tower of 1.5 cm blocks the 2 cm margin reaches the block two layers down; the tower sagged
   // on its first step and fell at 10 iterations).
-  const float reach = reachOfAStep();
+  const float fall = fallOfAStep();
   // The normal's cosine with the vertical: positive when the upper body is b.
   auto slopeOf = [&](uint32_t ci) { return contacts_[ci].manifold.points[0].normal.dot(up); };
   auto upper = [&](uint32_t ci, float& slope) -> int64_t {
-    if (outOfReach(ci, reach)) return -1;
+    if (outOfReach(ci, fall)) return -1;
     const Contact& c = contacts_[ci];
     slope = slopeOf(ci);
     if (std::fabs(slope) < 0.7f) return -1;

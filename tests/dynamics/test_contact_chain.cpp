@@ -317,6 +317,29 @@ TEST(ContactChain, ThinPlatesWhoseMarginReachesPastAPlateStillStackAsAChain) {
   }
 }
 
+TEST(ContactChain, PlatesThinnerThanTheSlopStackAsAChainAtFourIterations) {
+  // Ten 1 kg plates 4 mm thick, touching, on the ground. The ground's contact with the second plate,
+  // 4 mm below it through the first, is in the margin on the first step (the fall adds to it); by the
+  // unscaled 5 mm slop it was in reach, the island no chain, and swept at 4 iterations the stack sank
+  // half a plate into itself over its first steps. The reach now takes the contact's scaled slop.
+  WorldSettings ws;
+  ws.iterations = 4;
+  World w(ws);
+  test::addGround(w);
+  const float half = 0.002f;
+  std::vector<uint32_t> ids;
+  for (int i = 0; i < 10; ++i)
+    ids.push_back(test::addBox(w, Vec3(0.0f, half + 2.0f * half * float(i), 0.0f), Vec3(0.5f, half, 0.5f), 1.0f));
+  float deepest = 0.0f;
+  for (int s = 0; s < 120; ++s) {
+    w.step();
+    for (const Contact& c : w.contacts()) deepest = std::max(deepest, c.manifold.deepest());
+  }
+  EXPECT_LT(deepest, 0.0005f);  // an eighth of a plate (the scaled slop is 0.4 mm)
+  for (int i = 0; i < 10; ++i)
+    EXPECT_NEAR(w.bodies().xf[ids[size_t(i)]].p.y(), half + 2.0f * half * float(i), 0.0005f) << "plate " << i;
+}
+
 TEST(ContactChain, ThinPlateStacksHaveOneStateAtAnyThreadCount) {
   // Islands with a tail of contacts out of reach, ordered and solved concurrently.
   test::expectSameStateForThreadCounts([](int threads) {
