@@ -1,5 +1,7 @@
 #include "dynamics/joint_coupling.h"
 
+#include "dynamics/pair_push.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -42,28 +44,12 @@ bool jointResponse(const BodyStore& bodies, const JointCoupling& coupling, const
   freeResponse(bodies, c, link, r, 0, freeV[0], freeW[0]);
   freeResponse(bodies, c, link, r, 1, freeV[1], freeW[1]);
   // The push as each joint's bodies see it: only the contact's own two bodies move.
-  auto pushAt = [&](uint32_t body, bool dynamic, Vec3d& v, Vec3d& w) {
-    v.setZero();
-    w.setZero();
-    if (!dynamic) return;
-    if (c.dynA && body == c.a) {
-      v += freeV[0];
-      w += freeW[0];
-    }
-    if (c.dynB && body == c.b) {
-      v += freeV[1];
-      w += freeW[1];
-    }
-  };
+  PairPush push;
+  push.a = c.a, push.b = c.b, push.dynA = c.dynA, push.dynB = c.dynB;
+  push.va = freeV[0], push.wa = freeW[0], push.vb = freeV[1], push.wb = freeW[1];
   // The rows' velocity with the joints' answer `withJoints` added (dv, dw), or without it.
   auto rowVelocity = [&](const JointConstraint& jc, int i, bool withJoints) {
-    Vec3d va, wa, vb, wb;
-    pushAt(jc.a, jc.dynA, va, wa);
-    pushAt(jc.b, jc.dynB, vb, wb);
-    if (withJoints && jc.dynA) va += coupling.dv[jc.a], wa += coupling.dw[jc.a];
-    if (withJoints && jc.dynB) vb += coupling.dv[jc.b], wb += coupling.dw[jc.b];
-    const JointRow& row = jc.block[i];
-    return toDouble(row.lin).dot(vb - va) + toDouble(row.angB).dot(wb) - toDouble(row.angA).dot(wa);
+    return withJoints ? push.rowVelocity(jc, jc.block[i], coupling.dv, coupling.dw) : push.rowVelocity(jc, jc.block[i]);
   };
   // g = J M⁻¹ R_rᵀ, then x = K⁻¹ g in the tree's own factors.
   double largest = 0.0;

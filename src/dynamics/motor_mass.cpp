@@ -1,13 +1,13 @@
 #include "dynamics/motor_mass.h"
 
+#include "dynamics/pair_push.h"
+
 #include <algorithm>
 #include <cmath>
 
 namespace haif {
 
 namespace {
-
-using Vec3d = Eigen::Vector3d;
 
 /// Motors solved together, at most: S is factored every step (the cube of the count) and each motor
 /// costs a solve of the tree to make. Islands with more keep the sweep's motor pass.
@@ -17,35 +17,6 @@ constexpr uint32_t kMaxTreeMotors = 16;
 constexpr double kHeldAxis = 1e-3;
 /// Projected Gauss-Seidel passes over S when a motor meets its force bound.
 constexpr int kBoundPasses = 32;
-
-Vec3d toDouble(const Vec3& v) { return v.cast<double>(); }
-
-// A unit push on joint c's row r: the velocity change it gives each of c's two bodies.
-struct Push {
-  uint32_t a, b;
-  bool dynA, dynB;
-  Vec3d va, wa, vb, wb;
-  Push(const JointConstraint& c, const JointRow& r)
-      : a(c.a), b(c.b), dynA(c.dynA), dynB(c.dynB),
-        va(c.dynA ? Vec3d(-double(c.invMassA) * toDouble(r.lin)) : Vec3d::Zero()),
-        wa(c.dynA ? Vec3d(-toDouble(r.iAngA)) : Vec3d::Zero()),
-        vb(c.dynB ? Vec3d(double(c.invMassB) * toDouble(r.lin)) : Vec3d::Zero()),
-        wb(c.dynB ? Vec3d(toDouble(r.iAngB)) : Vec3d::Zero()) {}
-  void at(uint32_t body, bool dynamic, Vec3d& v, Vec3d& w) const {
-    v.setZero();
-    w.setZero();
-    if (!dynamic) return;
-    if (dynA && body == a) v += va, w += wa;
-    if (dynB && body == b) v += vb, w += wb;
-  }
-  // Row r of joint c's velocity under the push.
-  double rowVelocity(const JointConstraint& c, const JointRow& r) const {
-    Vec3d v1, w1, v2, w2;
-    at(c.a, c.dynA, v1, w1);
-    at(c.b, c.dynB, v2, w2);
-    return toDouble(r.lin).dot(v2 - v1) + toDouble(r.angB).dot(w2) - toDouble(r.angA).dot(w1);
-  }
-};
 
 // In-place Cholesky of an SPD matrix (row-major, lower triangle); false when not positive definite.
 bool cholesky(double* s, uint32_t m) {
@@ -80,9 +51,10 @@ void prepareTreeMotors(JointConstraint* js, uint32_t n, JointTree& tree, TreeMot
   for (uint32_t j = 0, a = 0; j < n; ++j)
     if (js[j].motor) motors.joint[a++] = j;
   // G and A⁻¹ G per motor, from the tree's own factors.
+  PairPush pushes[kMaxTreeMotors];
   for (uint32_t a = 0; a < m; ++a) {
     const JointConstraint& motor = js[motors.joint[a]];
-    const Push push(motor, motor.extra[0]);
+    const PairPush& push = pushes[a] = PairPush::onJointRow(motor, motor.extra[0]);
     double* g = &motors.push[size_t(a) * rows];
     for (uint32_t e = 0; e < tree.size(); ++e) {
       const JointConstraint& jc = js[tree.jointAt(e)];
@@ -101,8 +73,7 @@ void prepareTreeMotors(JointConstraint* js, uint32_t n, JointTree& tree, TreeMot
   for (uint32_t a = 0; a < m; ++a) {
     const JointConstraint& ma = js[motors.joint[a]];
     for (uint32_t b = 0; b < m; ++b) {
-      const JointConstraint& mb = js[motors.joint[b]];
-      double s = Push(mb, mb.extra[0]).rowVelocity(ma, ma.extra[0]);
+      double s = pushes[b].rowVelocity(ma, ma.extra[0]);
       const double* g = &motors.push[size_t(a) * rows];
       const double* x = &motors.answer[size_t(b) * rows];
       for (uint32_t r = 0; r < rows; ++r) s -= g[r] * x[r];
