@@ -484,7 +484,10 @@ void World::solve(int iterations) {
     if (deep || wantsSmallIslandSolve(k) || mayCoupleJoints(k)) {
       coupling |= islands_.islands[k].jointCount > 0;
       denseOf_[k] = dense++;
-      denseRows_[k] = deep ? int(3 * islands_.islands[k].contactCount) : denseRowsOf(k);
+      // A tail may land (solveIslands): room for the whole island's rows, as a deep island has.
+      const bool roomForAll = deep || tailOf(k) > 0;
+      denseRows_[k] = roomForAll ? std::min(int(3 * islands_.islands[k].contactCount), int(DenseNormalSystem::kMaxRows))
+                                 : denseRowsOf(k);
       storage += DenseNormalSystem::doublesFor(denseRows_[k]);
     }
   }
