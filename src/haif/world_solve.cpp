@@ -148,6 +148,12 @@ LaneBatches World::lanesOf(uint32_t k) {
 // The lanes hold no rolling row: a world with rolling resistance sweeps every island as one.
 bool World::isWide(uint32_t k) const { return settings_.wideSolve && !isChain_[k] && !hasRolling_; }
 
+// The velocity at which point p of contact c's body b moves relative to its body a.
+static Vec3 closingVelocity(const BodyStore& bodies, const Contact& c, const ContactPoint& p) {
+  const Vec3 &pa = bodies.xf[c.a].p, &pb = bodies.xf[c.b].p;
+  return bodies.v[c.b] + bodies.w[c.b].cross(p.position - pb) - bodies.v[c.a] - bodies.w[c.a].cross(p.position - pa);
+}
+
 // A contact out of reach by distance (the tail, moveOutOfReachToTail) that its bodies close within
 // the step: a 100 kg box 3.2 cm above a stack of five 4 mm plates, landing at 2.1 m/s. Swept after
 // the plates' chain, at a mass ratio of 100 it took a fraction of the box's momentum a sweep: the box
@@ -160,12 +166,9 @@ static bool anyClosesWithinStep(const Contact* contacts, const BodyStore& bodies
   for (uint32_t j = 0; j < n; ++j) {
     const Contact& c = contacts[ids[j]];
     const float reach = slop * c.toleranceScale + fall;  // as World::outOfReach
-    const Vec3 &pa = bodies.xf[c.a].p, &pb = bodies.xf[c.b].p;
     for (int i = 0; i < c.manifold.count; ++i) {
       const ContactPoint& p = c.manifold.points[i];
-      const Vec3 closing = bodies.v[c.b] + bodies.w[c.b].cross(p.position - pb) - bodies.v[c.a] -
-                           bodies.w[c.a].cross(p.position - pa);
-      if (p.depth - p.normal.dot(closing) * dt >= -reach) return true;
+      if (p.depth - p.normal.dot(closingVelocity(bodies, c, p)) * dt >= -reach) return true;
     }
   }
   return false;
@@ -378,12 +381,9 @@ bool World::wantsSmallIslandSolve(uint32_t k) {
   bool landing = false, settling = false;
   for (uint32_t j = 0; j < isl.contactCount && !landing; ++j) {
     const Contact& c = contacts_[ids[j]];
-    const Vec3 &pa = bodies_.xf[c.a].p, &pb = bodies_.xf[c.b].p;
     for (int i = 0; i < c.manifold.count; ++i) {
       const ContactPoint& p = c.manifold.points[i];
-      const Vec3 closing = bodies_.v[c.b] + bodies_.w[c.b].cross(p.position - pb) - bodies_.v[c.a] -
-                           bodies_.w[c.a].cross(p.position - pa);
-      landing |= p.depth <= slop * c.toleranceScale && p.normal.dot(closing) < -landingSpeed;
+      landing |= p.depth <= slop * c.toleranceScale && p.normal.dot(closingVelocity(bodies_, c, p)) < -landingSpeed;
     }
   }
   for (uint32_t j = 0; j < isl.contactCount; ++j) {
