@@ -4,6 +4,7 @@
 
 #ifdef HAIF_HAVE_RENDER
 #include "tools/frame_masks.h"
+#include "tools/video.h"
 
 #include <cstdint>
 #include <string>
@@ -22,6 +23,11 @@ class Clip {
   virtual std::vector<FrameRegion> timingRegions() const = 0;
   /// Lowest row of the picture proper: captions sit just above it (charts below stay visible).
   virtual int captionBottom() const = 0;
+  /// The sink this clip's frames go to, held while its simulations step (EncodingHold); null: none.
+  void holdWhileStepping(FrameSink* sink) { holdWhileStepping_ = sink; }
+
+ protected:
+  FrameSink* holdWhileStepping_ = nullptr;
 };
 
 }  // namespace haif

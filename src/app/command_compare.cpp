@@ -73,6 +73,7 @@ int commandCompare(int argc, char** argv) {
   if (!sink) return fail(error, 1);
   if (!notice.empty()) std::fprintf(stderr, "haif compare: %s\n", notice.c_str());
 
+  clip.holdWhileStepping(sink.get());
   Progress progress("compare", "frame", clip.frameCount());
   std::vector<uint8_t> rgba;
   for (int f = 0; f < clip.frameCount(); ++f) {

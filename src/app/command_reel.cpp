@@ -159,6 +159,7 @@ int commandReel(int argc, char** argv) {
     // One clip at a time: its renderer and worlds are freed before the next opens.
     std::unique_ptr<Clip> clip = openSegment(seg, p, threads, error);
     if (!clip) return fail(p.path + ": " + seg.item->place + ": " + error, 1);
+    clip->holdWhileStepping(sink.get());
     if (!writer.beginClip(seg.fadeIn, seg.holdOut, error)) return fail(error, 1);
     for (int f = 0; f < seg.frames; ++f) {
       if (!clip->next(rgba, error)) return fail(p.path + ": " + seg.item->place + ": " + error, 1);

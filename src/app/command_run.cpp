@@ -25,6 +25,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 
 namespace haif {
 
@@ -159,6 +160,7 @@ int commandRun(int argc, char** argv) {
     frame.overlay.budgetMs = float(info.budgetMs);
   }
 #endif
+  std::function<void(bool)> holdBeside;  // the encoders, held while each step runs
   StagedFolder output;
   if (!output.open(outDir, runMarkers, error)) return fail("haif run: " + error);
   const std::string stage = output.path();
@@ -176,6 +178,11 @@ int commandRun(int argc, char** argv) {
   // PNG encoding runs on one writer thread, overlapping the next steps and frames.
   std::unique_ptr<render::AsyncPngWriter> pngWriter;
   if (render) pngWriter = std::make_unique<render::AsyncPngWriter>();
+  // Both encoders wait while a step runs, and work while the frames are drawn (EncodingHold).
+  holdBeside = [&](bool held) {
+    if (encoding) encoder.hold(held);
+    if (pngWriter) pngWriter->hold(held);
+  };
   std::vector<uint8_t> pixels;
   int frameIndex = 0;
   auto afterStep = [&](const World& w) {
@@ -215,7 +222,7 @@ int commandRun(int argc, char** argv) {
   };
 #endif
 
-  const bool finite = runSteps(sim, frames, stats, metrics, afterStep);
+  const bool finite = runSteps(sim, frames, stats, metrics, afterStep, holdBeside);
   progress.finish();
   if (renderFailed) return fail(error);
 #ifdef HAIF_HAVE_RENDER

@@ -19,6 +19,7 @@ AsyncPngWriter::~AsyncPngWriter() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stop_ = true;
+    held_ = false;
   }
   changed_.notify_all();
   thread_.join();
@@ -26,6 +27,10 @@ AsyncPngWriter::~AsyncPngWriter() {
 
 bool AsyncPngWriter::submit(const std::string& path, int w, int h, std::vector<uint8_t>& rgba, std::string* error) {
   std::unique_lock<std::mutex> lock(mutex_);
+  if (count_ == ring_.size() && held_) {  // waiting for a held thread would never end
+    held_ = false;
+    changed_.notify_all();
+  }
   changed_.wait(lock, [&] { return count_ < ring_.size() || !error_.empty(); });
   if (!error_.empty()) {
     if (error) *error = error_;
@@ -46,8 +51,18 @@ bool AsyncPngWriter::submit(const std::string& path, int w, int h, std::vector<u
   return true;
 }
 
+void AsyncPngWriter::hold(bool held) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    held_ = held;
+  }
+  if (!held) changed_.notify_all();
+}
+
 bool AsyncPngWriter::finish(std::string* error) {
   std::unique_lock<std::mutex> lock(mutex_);
+  held_ = false;
+  changed_.notify_all();
   changed_.wait(lock, [&] { return (count_ == 0 && !busy_) || !error_.empty(); });
   if (error_.empty()) return true;
   if (error) *error = error_;
@@ -72,7 +87,7 @@ void AsyncPngWriter::run() {
     bool failed = false;  // after one failure the rest are dropped, not written
     {
       std::unique_lock<std::mutex> lock(mutex_);
-      changed_.wait(lock, [&] { return count_ > 0 || stop_; });
+      changed_.wait(lock, [&] { return (count_ > 0 && !held_) || stop_; });
       if (count_ == 0) return;  // stopping and nothing left
       job = &ring_[head_];
       pixels.swap(job->rgba);

@@ -28,6 +28,10 @@ class AsyncPngWriter {
   bool submit(const std::string& path, int w, int h, std::vector<uint8_t>& rgba, std::string* error);
   /// Waits until every queued frame is on disk. False with *error (the first failure) if any failed.
   bool finish(std::string* error);
+  /// While held (true), the thread starts no new frame (one it is writing goes on): a filmed run
+  /// holds it during each budgeted step, so frames are encoded while the next ones are drawn
+  /// (tools/video.h, EncodingHold). A full queue, finish() and the destructor lift the hold.
+  void hold(bool held);
   /// Median time to encode and write one frame so far, in ms (0 before the first).
   double medianWriteMs();
 
@@ -45,6 +49,7 @@ class AsyncPngWriter {
   size_t head_ = 0, count_ = 0;         // oldest queued job and number queued
   bool busy_ = false;                   // the thread is writing a job it has taken out
   bool stop_ = false;
+  bool held_ = false;
   std::string error_;                   // first failure; empty while all went well
   std::vector<std::vector<uint8_t>> spare_;  // recycled pixel buffers
   std::vector<double> writeMs_;

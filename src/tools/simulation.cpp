@@ -111,11 +111,13 @@ bool checkReplayLength(const Simulation& sim, const SolverSpec& spec, int steps,
 }
 
 bool runSteps(Simulation& sim, int steps, std::vector<StepStats>& stats, RunMetrics& metrics,
-              const std::function<void(const World&)>& afterStep) {
+              const std::function<void(const World&)>& afterStep, const std::function<void(bool)>& holdBeside) {
   World& w = *sim.world;
   stats.reserve(stats.size() + size_t(steps));
   for (int s = 0; s < steps; ++s) {
+    if (holdBeside) holdBeside(true);
     w.step();
+    if (holdBeside) holdBeside(false);
     stats.push_back(w.lastStats());
     const bool finite = metrics.afterStep(w);
     if (afterStep) afterStep(w);

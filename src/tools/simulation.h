@@ -46,8 +46,11 @@ bool makeSimulation(const std::string& scenePath, const SolverSpec& spec, int th
                     std::string& error);
 
 /// Steps `steps` times, filling per-step stats and metrics; `afterStep` (may be empty) runs after
-/// every step. Stops early, returning false, when the state turns NaN.
+/// every step. `holdBeside` (may be empty) is called with true before each step and with false
+/// after it: encoders running beside a filmed run wait while a step runs (tools/video.h,
+/// EncodingHold). Stops early, returning false, when the state turns NaN.
 bool runSteps(Simulation& sim, int steps, std::vector<StepStats>& stats, RunMetrics& metrics,
-              const std::function<void(const World&)>& afterStep = {});
+              const std::function<void(const World&)>& afterStep = {},
+              const std::function<void(bool)>& holdBeside = {});
 
 }  // namespace haif

@@ -84,7 +84,7 @@ bool VideoEncoder::open(const std::string& outPath, int width, int height, doubl
     ::setpgid(0, 0);
     unblockInterruptsInChild();
     // Encoding is background work: at the lowest priority it waits for the simulation, whose
-    // budgeted steps it otherwise preempted.
+    // budgeted steps it otherwise preempted (and it is held while they run: EncodingHold).
     if (::nice(19) == -1) { /* still encodes, at normal priority */ }
     ::execvp(argv[0], argv.data());
     ::_exit(127);
@@ -122,6 +122,7 @@ bool VideoEncoder::write(const uint8_t* rgba, std::string& error) {
 
 bool VideoEncoder::waitForExit(std::string& error) {
   if (pid_ <= 0) return true;
+  hold(false);  // a stopped encoder never exits
   int status = 0;
   pid_t r;
   do r = ::waitpid(pid_, &status, 0);
@@ -163,10 +164,19 @@ bool VideoEncoder::finish(std::string& error) {
   return true;
 }
 
+void VideoEncoder::hold(bool held) {
+  if (pid_ <= 0 || held == held_) return;
+  // Stops all its threads. Should haif die while ffmpeg is stopped, ffmpeg's process group (its
+  // own: open) is orphaned, and the kernel then sends it SIGHUP and SIGCONT: it does not linger.
+  ::kill(pid_, held ? SIGSTOP : SIGCONT);
+  held_ = held;
+}
+
 void VideoEncoder::abort() {
   if (fd_ >= 0) ::close(fd_);
   fd_ = -1;
   if (pid_ > 0) {
+    hold(false);
     ::kill(pid_, SIGTERM);
     int status = 0;
     while (::waitpid(pid_, &status, 0) < 0 && errno == EINTR) {

@@ -1,15 +1,21 @@
 // Videos from `haif run --video`: streamed through ffmpeg (checked with ffprobe), PNG frames kept,
 // a clear note without ffmpeg, and a clean failure when ffmpeg dies.
 #include "haif_process.h"
+#include "tools/video.h"
 #include "video_probe.h"
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace haif {
 namespace {
@@ -57,6 +63,62 @@ TEST_F(VideoOutput, RunVideoHasEveryFrameAtEvenSizeWithTheIndexFirst) {
   EXPECT_EQ(countFiles(out / "frames", ".png"), 12);
   EXPECT_EQ(countFiles(dir_ / "clips", ".mp4"), 1);
   for (const auto& e : fs::directory_iterator(dir_ / "clips")) EXPECT_NE(e.path().filename().string()[0], '.');
+}
+
+// The scheduler state ('R', 'S', 'T' for stopped, ...) of this process's one child (the encoder, by
+// then perhaps not yet `ffmpeg`: a child stopped before its exec is held all the same); 0: none.
+char childState() {
+  for (const auto& e : fs::directory_iterator("/proc")) {
+    std::ifstream in(e.path() / "stat");
+    std::string text;
+    if (!in || !std::getline(in, text)) continue;
+    const size_t close = text.rfind(')');  // the name may hold spaces and brackets
+    if (close == std::string::npos) continue;
+    std::istringstream rest(text.substr(close + 1));
+    char state = 0;
+    long parent = 0;
+    rest >> state >> parent;
+    if (parent == long(::getpid())) return state;
+  }
+  return 0;
+}
+
+// Waits up to two seconds for the child's state to become (or stop being) `state`: signals land
+// asynchronously.
+bool childReaches(char state, bool want) {
+  for (int i = 0; i < 200; ++i) {
+    if ((childState() == state) == want) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
+// `haif run --video` holds the encoder while each budgeted step runs (EncodingHold): held, ffmpeg is
+// stopped; let go, it goes on; and a video finished while held is still complete.
+TEST_F(VideoOutput, AHeldEncoderIsStoppedAndAVideoFinishedWhileHeldIsComplete) {
+  if (!test::haveProgram("ffmpeg") || !test::haveProgram("ffprobe")) GTEST_SKIP() << "ffmpeg/ffprobe not installed";
+  const fs::path video = dir_ / "held.mp4";
+  const int w = 64, h = 48, frames = 8;
+  VideoEncoder encoder;
+  std::string error;
+  ASSERT_TRUE(encoder.open(video.string(), w, h, 30.0, error)) << error;
+  std::vector<uint8_t> rgba(size_t(w) * h * 4, 255);
+  for (int f = 0; f < frames; ++f) {
+    rgba[size_t(f) * 4] = uint8_t(f * 30);
+    if (f == frames / 2) {
+      encoder.hold(true);
+      EXPECT_TRUE(childReaches('T', true)) << "held, ffmpeg should be stopped";
+      encoder.hold(false);
+      EXPECT_TRUE(childReaches('T', false)) << "let go, ffmpeg should run again";
+    }
+    ASSERT_TRUE(encoder.write(rgba.data(), error)) << error;
+  }
+  encoder.hold(true);
+  ASSERT_TRUE(childReaches('T', true));
+  ASSERT_TRUE(encoder.finish(error)) << error;  // a stopped ffmpeg would never exit
+  const test::VideoInfo v = test::probeVideo(video);
+  ASSERT_TRUE(v.ok) << "ffprobe could not read " << video;
+  EXPECT_EQ(v.frames, frames);
 }
 
 TEST_F(VideoOutput, WithoutFfmpegTheFramesAreKeptAndTheMessageSaysSo) {

@@ -2,7 +2,9 @@
 // atomic files, and errors reported.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
+#include <thread>
 
 #include "render/async_png_writer.h"
 #include "render/png_io.h"
@@ -76,6 +78,39 @@ TEST(AsyncPngWriter, AFailedWriteIsReportedAndStopsFurtherFrames) {
   EXPECT_FALSE(writer.submit(dir + "/after_error.png", kW, kH, buffer, &again));
   EXPECT_EQ(again, error);
   EXPECT_FALSE(std::filesystem::exists(dir + "/after_error.png"));
+}
+
+// A filmed run holds the writer while each budgeted step runs: it starts no frame then, and the
+// hold never blocks the run (a full queue and finish() lift it).
+TEST(AsyncPngWriter, AHeldWriterStartsNoFrameAndAFullQueueOrFinishLiftsTheHold) {
+  const std::string dir = test::tempDir() + "/async_held";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const int maxPending = 2;
+  AsyncPngWriter writer(maxPending);
+  std::string error;
+  writer.hold(true);
+  std::vector<uint8_t> buffer = frameFor(0);
+  ASSERT_TRUE(writer.submit(framePath(dir, 0), kW, kH, buffer, &error)) << error;
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // a 64x40 frame takes well under 1 ms
+  EXPECT_FALSE(std::filesystem::exists(framePath(dir, 0))) << "held, the writer should not start a frame";
+  writer.hold(false);
+  ASSERT_TRUE(writer.finish(&error)) << error;
+  EXPECT_TRUE(std::filesystem::exists(framePath(dir, 0)));
+  // Held with more frames than the queue holds: submit() must not wait for a thread that waits for it.
+  writer.hold(true);
+  for (int i = 1; i <= maxPending + 2; ++i) {
+    buffer = frameFor(i);
+    ASSERT_TRUE(writer.submit(framePath(dir, i), kW, kH, buffer, &error)) << error;
+  }
+  writer.hold(true);
+  ASSERT_TRUE(writer.finish(&error)) << error;  // finish() while held
+  for (int i = 0; i <= maxPending + 2; ++i) {
+    int w = 0, h = 0;
+    std::vector<uint8_t> back;
+    ASSERT_TRUE(readPng(framePath(dir, i), &w, &h, &back, &error)) << error;
+    EXPECT_TRUE(back == frameFor(i)) << "frame " << i << " differs";
+  }
 }
 
 TEST(AsyncPngWriter, DestructorFlushesQueuedFrames) {
