@@ -44,6 +44,8 @@ struct BodyStore {
   bool isDynamic(uint32_t i) const { return kind[i] == BodyKind::Dynamic; }
   /// Dynamic and awake: a body the solver moves (static, kinematic and sleeping ones it only reads).
   bool isAwakeDynamic(uint32_t i) const { return kind[i] == BodyKind::Dynamic && !asleep[i]; }
+  /// Velocity of the material point of body i now at `point` (world frame).
+  Vec3 velocityAt(uint32_t i, const Vec3& point) const { return v[i] + w[i].cross(point - xf[i].p); }
 
   /// Appends a body and returns its id.
   uint32_t add(BodyKind k, const Transform& t, float m, const Mat3& inertia) {

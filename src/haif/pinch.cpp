@@ -57,7 +57,7 @@ uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* 
     const Side s = sideOf(bodies, edges[k.contact], contacts[k.contact]);
     if (bodies.kind[s.other] != BodyKind::Kinematic || pressureOfBody_[s.dyn] >= 0) continue;
     const Vec3 at = contacts[k.contact].manifold.points[0].position;
-    const Vec3 surface = bodies.v[s.other] + bodies.w[s.other].cross(at - bodies.xf[s.other].p);
+    const Vec3 surface = bodies.velocityAt(s.other, at);
     if (surface.dot(s.into) > 0.0f) press(s.dyn, s.into, s.into, s.other, k.contact, s.other);
   }
   if (pressures_.empty()) return 0;

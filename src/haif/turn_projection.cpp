@@ -132,12 +132,10 @@ void TurnProjection::scanPairs(uint32_t begin, uint32_t end) {
       continue;
     }
     const Contact& k = (*in_.contacts)[c];
-    const Vec3 va = bodies.v[k.a], vb = bodies.v[k.b], wa = bodies.w[k.a], wb = bodies.w[k.b];
-    const Vec3 pa = bodies.xf[k.a].p, pb = bodies.xf[k.b].p;
     float predicted = -std::numeric_limits<float>::infinity();
     for (int i = 0; i < k.manifold.count; ++i) {
       const ContactPoint& p = k.manifold.points[i];
-      const Vec3 rel = vb + wb.cross(p.position - pb) - va - wa.cross(p.position - pa);
+      const Vec3 rel = bodies.velocityAt(k.b, p.position) - bodies.velocityAt(k.a, p.position);
       predicted = std::max(predicted, p.depth + dt * rel.norm());
     }
     if (predicted > target(c) + kCrushSlack) candidate_[c] = 1;

@@ -56,6 +56,10 @@ struct BodyDef {
   float angularDamping = 0.0f;
 };
 
+/// How far apart (m) a contact's points may be and still close within a step (World::outOfReach):
+/// the slop scaled to its bodies (`scale`, haif/small_bodies.h) and a fall's step (`fall`: g dt²).
+inline float contactReach(float slop, float scale, float fall) { return slop * scale + fall; }
+
 class World {
  public:
   explicit World(const WorldSettings& settings = {});
@@ -159,8 +163,7 @@ class World {
   /// half a plate into itself.
   bool outOfReach(uint32_t ci, float fall) const {
     const ContactEdge& e = contactEdges_[ci];
-    const float scale = std::min(toleranceScale_[e.a], toleranceScale_[e.b]);
-    return e.nearest < -(settings_.contact.slop * scale + fall);
+    return e.nearest < -contactReach(settings_.contact.slop, std::min(toleranceScale_[e.a], toleranceScale_[e.b]), fall);
   }
   /// `restartDirection`: the island's momentum direction restarts from the last sweep's change
   /// (see solveIteration); only for joint-free islands swept plainly or wide. `measureChange`:

@@ -150,8 +150,7 @@ bool World::isWide(uint32_t k) const { return settings_.wideSolve && !isChain_[k
 
 // The velocity at which point p of contact c's body b moves relative to its body a.
 static Vec3 closingVelocity(const BodyStore& bodies, const Contact& c, const ContactPoint& p) {
-  const Vec3 &pa = bodies.xf[c.a].p, &pb = bodies.xf[c.b].p;
-  return bodies.v[c.b] + bodies.w[c.b].cross(p.position - pb) - bodies.v[c.a] - bodies.w[c.a].cross(p.position - pa);
+  return bodies.velocityAt(c.b, p.position) - bodies.velocityAt(c.a, p.position);
 }
 
 // A contact out of reach by distance (the tail, moveOutOfReachToTail) that its bodies close within
@@ -165,7 +164,7 @@ static bool anyClosesWithinStep(const Contact* contacts, const BodyStore& bodies
                                 float dt, float slop, float fall) {
   for (uint32_t j = 0; j < n; ++j) {
     const Contact& c = contacts[ids[j]];
-    const float reach = slop * c.toleranceScale + fall;  // as World::outOfReach
+    const float reach = contactReach(slop, c.toleranceScale, fall);
     for (int i = 0; i < c.manifold.count; ++i) {
       const ContactPoint& p = c.manifold.points[i];
       if (p.depth - p.normal.dot(closingVelocity(bodies, c, p)) * dt >= -reach) return true;
