@@ -87,15 +87,17 @@ bool ComparisonClip::next(std::vector<uint8_t>& rgba, std::string& error) {
     error = "comparison: no frames left";
     return false;
   }
-  // Both sides step in lockstep so every frame shows them at the same simulated time.
-  for (int k = 0; k < opt_.frameEvery; ++k)
-    for (int i = 0; i < 2; ++i) {
-      const EncodingHold hold(holdWhileStepping_);
-      if (!side_[i]->step(error)) {
-        error = std::string(kSideName[i]) + " side: " + error;
-        return false;
-      }
-    }
+  // Both sides step in lockstep so every frame shows them at the same simulated time; the sink
+  // encodes while the frames are drawn, not beside the steps.
+  {
+    const EncodingHold hold(holdWhileStepping_);
+    for (int k = 0; k < opt_.frameEvery; ++k)
+      for (int i = 0; i < 2; ++i)
+        if (!side_[i]->step(error)) {
+          error = std::string(kSideName[i]) + " side: " + error;
+          return false;
+        }
+  }
   const int w = opt_.width;
   rgba.assign(size_t(w) * size_t(opt_.height) * 4, 0);
   render::Canvas canvas(rgba.data(), w, opt_.height);

@@ -28,9 +28,10 @@ bool SceneClip::open(const std::string& scenePath, const std::string& spec, cons
 }
 
 bool SceneClip::next(std::vector<uint8_t>& rgba, std::string& error) {
-  for (int k = 0; k < opt_.frameEvery; ++k) {
-    const EncodingHold hold(holdWhileStepping_);
-    if (!scene_->step(error)) return false;
+  {
+    const EncodingHold hold(holdWhileStepping_);  // the sink encodes while the frame is drawn
+    for (int k = 0; k < opt_.frameEvery; ++k)
+      if (!scene_->step(error)) return false;
   }
   scene_->buildFrame(input_);
   return renderer_->render(input_, rgba, &error);
