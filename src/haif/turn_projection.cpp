@@ -43,7 +43,8 @@ void collideNow(const TurnProjectionInput& in, uint32_t a, uint32_t b, float& de
 // were thrown apart in one step, one of them 0.38 m into the ground).
 // A small body's pair has all three scaled down with it (haif/small_bodies.h).
 float TurnProjection::target(uint32_t c) const {
-  const float start = in_.edges[c].deepest, scale = (*in_.contacts)[c].toleranceScale;
+  const ContactEdge& e = in_.edges[c];
+  const float start = e.deepest, scale = toleranceScale(e);
   return std::max(std::max(settings_.keep * scale, std::min(start, settings_.crushKeep * scale)),
                   start - settings_.crushRecover * scale);
 }

@@ -129,6 +129,7 @@ uint32_t World::projectTurns() {
   in.pinched = settings_.resolvePinches ? &pinch_.pinchedContacts() : nullptr;
   in.up = upDirection();
   in.reach = speedBound_.reaches();
+  in.toleranceScale = toleranceScale_.data();
   in.startBounds = bounds_.data();
   in.dt = settings_.dt;
   in.contactMargin = settings_.contactMargin;

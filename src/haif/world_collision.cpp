@@ -206,6 +206,9 @@ void World::narrowPhase() {
   };
   parallelFor(n, kPairGrain, [&](uint32_t begin, uint32_t end) {
     for (uint32_t ci = begin; ci < end; ++ci) {
+      // A contact spans six cache lines and a pair's work is short: the next ones are asked for
+      // ahead (their first touch was a fifth of this loop's own time in the swept pit).
+      if (ci + kPrefetchAhead < end) prefetchContact(contacts_[ci + kPrefetchAhead]);
       Contact& c = contacts_[ci];
       collision_.pairFlags[ci] = 0;
       c.pinched = false;  // PinchDetector::mark sets it again
