@@ -69,7 +69,11 @@ inline constexpr float kJointCoupledRatioFactor = 2.0f;
 
 /// True when a contact of the island moves along its normal by at most 1/ratio as much for a push
 /// through the joints as for the same push on its own bodies, for some link's force row: a sweep then
-/// passes the push on to the joints at about 1/ratio a sweep.
+/// passes the push on to the joints at about 1/ratio a sweep. Or when a contact presses two dynamic
+/// bodies whose masses differ by `ratio` or more: a sweep passes a push through the lighter one a
+/// fraction of the heavier one's share, joints or not (a ragdoll landing on its own forearm, 1.5 kg
+/// under a 20 kg chest, sank 5.9 cm into it at 10 sweeps). Either way, only if no contact row is
+/// held (almost) still by the joints.
 bool jointsCarryContacts(const BodyStore& bodies, const JointCoupling& coupling, const ContactConstraint* cs,
                          const ChainLink* links, uint32_t n, float ratio);
 
