@@ -1,5 +1,6 @@
 #include "dynamics/joint_coupling.h"
 
+#include "dynamics/mass_ratio.h"
 #include "dynamics/pair_push.h"
 
 #include <algorithm>
@@ -184,17 +185,15 @@ bool jointsCarryContacts(const BodyStore& bodies, const JointCoupling& coupling,
   };
   // A light body pressed by a heavy one: sweeps pass the heavy one's push through it a sliver at a
   // time, as through a light box under a heavy one (the small-island solve's case without joints).
-  auto massesDiffer = [&](const ContactConstraint& c) {
-    if (!c.dynA || !c.dynB) return false;
-    const float light = std::max(c.invMassA, c.invMassB), heavy = std::min(c.invMassA, c.invMassB);
-    return light >= ratio * heavy;
+  auto pressesLight = [&](const ContactConstraint& c) {
+    return c.dynA && c.dynB && massesDiffer(c.invMassA, c.invMassB, ratio);
   };
   // First whether any force row is carried (most islands with joints have none: one solve a link).
   bool carried = false;
   for (uint32_t j = 0; j < n && !carried; ++j) {
     const double s = share(j, 0);
     if (s < 0.0) return false;
-    carried = s * double(ratio) <= 1.0 || massesDiffer(cs[j]);
+    carried = s * double(ratio) <= 1.0 || pressesLight(cs[j]);
   }
   if (!carried) return false;
   // Then that no row is held by the joints (almost) still: it shares its load with them in any

@@ -28,4 +28,8 @@ inline float toleranceScale(const Shape& shape, float thickness) {
   return extent >= thickness ? 1.0f : std::max(extent / thickness, kMinToleranceScale);
 }
 
+/// A pair's factor from its bodies' factors: the thinner body decides (a bead on a floor keeps the
+/// bead's tolerances). Every user of a pair's tolerances takes it from here.
+inline float pairToleranceScale(float scaleA, float scaleB) { return std::min(scaleA, scaleB); }
+
 }  // namespace haif

@@ -46,6 +46,7 @@
 #include "core/serial_for.h"
 #include "dynamics/contact.h"
 #include "haif/islands.h"
+#include "haif/small_bodies.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -79,8 +80,8 @@ struct TurnProjectionInput {
   const std::vector<uint32_t>* pinched = nullptr;  ///< the contacts marked pinched (haif/pinch.h); null: none
   Vec3 up = Vec3::UnitY();
   const float* reach = nullptr;       ///< per body: bounding radius about its centre (m)
-  /// Per body: its factor on the contact tolerances (haif/small_bodies.h); a pair's is the smaller
-  /// of its bodies' (as Contact::toleranceScale). Null: 1 for every body.
+  /// Per body: its factor on the contact tolerances (haif/small_bodies.h); a pair's comes from its
+  /// bodies' by pairToleranceScale (as Contact::toleranceScale). Null: 1 for every body.
   const float* toleranceScale = nullptr;
   const Aabb* startBounds = nullptr;  ///< per body: tight box at the step's start
   float dt = 0.0f;
@@ -127,7 +128,7 @@ class TurnProjection {
   /// The pair's tolerance factor, read from its bodies: the contacts are large, and the bound below
   /// runs on many pairs of a churning pile (reading it from the contact was most of its time).
   float toleranceScale(const ContactEdge& pair) const {
-    return in_.toleranceScale ? std::min(in_.toleranceScale[pair.a], in_.toleranceScale[pair.b]) : 1.0f;
+    return in_.toleranceScale ? pairToleranceScale(in_.toleranceScale[pair.a], in_.toleranceScale[pair.b]) : 1.0f;
   }
   /// The stage only translates bodies, and a pair's depth depends on where one body is relative to
   /// the other: translated relative to each other by t, it deepens by at most |t|. A pair whose depth

@@ -23,6 +23,7 @@
 #include "haif/pinch.h"
 #include "haif/rest_damping.h"
 #include "haif/sleep_sets.h"
+#include "haif/small_bodies.h"
 #include "haif/speed_bound.h"
 #include "haif/step_stats.h"
 #include "haif/tsan_pool.h"
@@ -163,7 +164,7 @@ class World {
   /// half a plate into itself.
   bool outOfReach(uint32_t ci, float fall) const {
     const ContactEdge& e = contactEdges_[ci];
-    return e.nearest < -contactReach(settings_.contact.slop, std::min(toleranceScale_[e.a], toleranceScale_[e.b]), fall);
+    return e.nearest < -contactReach(settings_.contact.slop, pairToleranceScale(toleranceScale_[e.a], toleranceScale_[e.b]), fall);
   }
   /// `restartDirection`: the island's momentum direction restarts from the last sweep's change
   /// (see solveIteration); only for joint-free islands swept plainly or wide. `measureChange`:

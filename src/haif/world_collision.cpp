@@ -33,7 +33,7 @@ Contact World::newContact(uint32_t a, uint32_t b) const {
   // the one that rolls.
   c.rollingLever = std::max(bodies_.rollingResistance[a], bodies_.rollingResistance[b]) *
                    std::max(bodies_.rollingRadius[a], bodies_.rollingRadius[b]);
-  c.toleranceScale = std::min(toleranceScale_[a], toleranceScale_[b]);
+  c.toleranceScale = pairToleranceScale(toleranceScale_[a], toleranceScale_[b]);
   return c;
 }
 

@@ -2,6 +2,8 @@
 // stops), spare iterations shared, the relax sweeps after integration and the impulses stored.
 #include "haif/world_internal.h"
 
+#include "dynamics/mass_ratio.h"
+
 #include <algorithm>
 #include <cassert>
 
@@ -371,7 +373,7 @@ bool World::wantsSmallIslandSolve(uint32_t k) {
   for (uint32_t j = 0; j < isl.contactCount && !ratio; ++j) {
     const ContactEdge& c = contactEdges_[ids[j]];
     const float ma = bodies_.mass[c.a], mb = bodies_.mass[c.b];
-    ratio = ma > 0.0f && mb > 0.0f && std::max(ma, mb) >= needed * std::min(ma, mb);
+    ratio = ma > 0.0f && mb > 0.0f && massesDiffer(ma, mb, needed);
   }
   if (!ratio) return false;
   const float g = settings_.gravity.norm();
