@@ -22,7 +22,7 @@ constexpr float kLeastMove = 1e-4f;
 constexpr float kBoundRounding = 1e-5f;
 
 /// The deepest point of a pair collided at the bodies' current poses (depth -inf: no point).
-void collideNow(const TurnProjectionInput& in, uint32_t a, uint32_t b, float& depth, Vec3& normal) {
+void collideAt(const TurnProjectionInput& in, uint32_t a, uint32_t b, float& depth, Vec3& normal) {
   const BodyStore& bodies = *in.bodies;
   const std::vector<Shape>& shapes = *in.shapes;
   Manifold m;
@@ -69,6 +69,7 @@ bool TurnProjection::movable(uint32_t i) const {
 bool TurnProjection::begin(const TurnProjectionInput& in, const TurnProjectionSettings& settings) {
   moved_ = 0;
   collisions_ = 0;
+  toBox_.clear();
   if (settings.angle <= 0.0f) return false;
   in_ = in;
   settings_ = settings;
@@ -154,10 +155,11 @@ bool TurnProjection::collectCandidates() {
     if (candidate_[c] == 2) boxPairs_.push_back(c);
   }
   if (!any) return false;
-  if (!boxPairs_.empty()) {
-    needBox_.assign(n, 0);
-    finalBox_.resize(n);
-    for (uint32_t c : boxPairs_) needBox_[in_.edges[c].a] = needBox_[in_.edges[c].b] = 1;
+  boxed_.assign(n, 0);
+  box_.resize(n);
+  for (uint32_t c : boxPairs_) {
+    needBox(in_.edges[c].a);
+    needBox(in_.edges[c].b);
   }
   // A body pressed from both sides by what cannot move (haif/pinch.h) is left where the solver put
   // it: out of one is into the other. A kinematic body is as immovable as a static one here: the
@@ -202,16 +204,45 @@ bool TurnProjection::takeable(const ContactEdge& k) const {
   return !jointed(k.a) || !jointed(k.b);  // a jointed body does not move: its joints would be pulled apart
 }
 
+void TurnProjection::needBox(uint32_t body) {
+  if (boxed_[body]) return;
+  boxed_[body] = 1;
+  toBox_.push_back(body);
+}
+
+Aabb TurnProjection::solvedBox(uint32_t body) const {
+  Transform solved = in_.bodies->xf[body];
+  solved.p -= shift_[body];
+  return computeAabb((*in_.shapes)[body], solved);
+}
+
 void TurnProjection::boxBodies(uint32_t begin, uint32_t end) {
-  for (uint32_t i = begin; i < end; ++i)
-    if (needBox_[i]) finalBox_[i] = computeAabb((*in_.shapes)[i], in_.bodies->xf[i]);
+  for (uint32_t j = begin; j < end; ++j) box_[toBox_[j]] = solvedBox(toBox_[j]);
+}
+
+float TurnProjection::boxGap(const ContactEdge& e) const {
+  const Vec3 d = shift_[e.b] - shift_[e.a];  // b's box relative to a's
+  const Aabb &a = box_[e.a], &b = box_[e.b];
+  return std::max((b.lo + d - a.hi).maxCoeff(), (a.lo - b.hi - d).maxCoeff());
+}
+
+float TurnProjection::depthNow(const ContactEdge& e, Vec3& normal, bool& collided) const {
+  // Above the rounding of the boxes: pairs the stage moved to touch have boxes a hair apart and a
+  // point at depth 0.
+  const float gap = boxGap(e);
+  collided = !(gap > kBoundRounding);
+  if (!collided) return -gap;
+  float depth;
+  collideAt(in_, e.a, e.b, depth, normal);
+  return depth;
 }
 
 void TurnProjection::boxPairs() {
   for (uint32_t c : boxPairs_) {
     const ContactEdge& e = in_.edges[c];
-    candidate_[c] = finalBox_[e.a].overlaps(finalBox_[e.b]) ? 1 : 0;
-    if (candidate_[c] == 0) known_[c] = 0.0f;  // the final boxes are apart
+    const float gap = boxGap(e);  // nothing has moved yet
+    candidate_[c] = gap > 0.0f ? 0 : 1;
+    if (candidate_[c] == 0) known_[c] = -gap;  // the final boxes are apart: the pair is that far
   }
 }
 
@@ -240,6 +271,11 @@ bool TurnProjection::gatherRound(int round) {
         for (uint32_t j = pairStart_[i]; j < pairStart_[i + 1]; ++j) take(pairOf_[j]);
   }
   std::sort(pairs_.begin(), pairs_.end());  // lowest first; ties by contact index
+  toBox_.clear();
+  for (const auto& [height, c] : pairs_) {
+    needBox(in_.edges[c].a);
+    needBox(in_.edges[c].b);
+  }
   std::fill(active_.begin(), active_.end(), 0);
   ahead_.resize(pairs_.size());
   roundStart_ = clock_;
@@ -250,7 +286,7 @@ bool TurnProjection::gatherRound(int round) {
 void TurnProjection::collideAhead(uint32_t begin, uint32_t end) {
   for (uint32_t j = begin; j < end; ++j) {
     const ContactEdge& k = in_.edges[pairs_[j].second];
-    collideNow(in_, k.a, k.b, ahead_[j].depth, ahead_[j].normal);
+    ahead_[j].depth = depthNow(k, ahead_[j].normal, ahead_[j].collided);
     ahead_[j].shift = relativeShift(k.a, k.b);
   }
 }
@@ -273,6 +309,7 @@ bool TurnProjection::resolveRound() {
       entry = pairs_[j];
       depth = ahead_[j].depth;
       normal = ahead_[j].normal;
+      collisions_ += ahead_[j].collided;
       ++j;
     } else {
       std::pop_heap(later_.begin(), later_.end(), std::greater<>());
@@ -286,8 +323,14 @@ bool TurnProjection::resolveRound() {
     // bound says that it still cannot be deep enough to move.
     if (!fromList || std::max(movedAt_[k.a], movedAt_[k.b]) > roundStart_) {
       if (!mayExceed(c)) continue;
-      collideNow(in_, k.a, k.b, depth, normal);
-      ++collisions_;
+      for (const uint32_t body : {k.a, k.b})
+        if (!boxed_[body]) {  // a pair a move brought in: its bodies may have no box yet
+          boxed_[body] = 1;
+          box_[body] = solvedBox(body);
+        }
+      bool collided;
+      depth = depthNow(k, normal, collided);
+      collisions_ += collided;
       noteDepth(c, depth, relativeShift(k.a, k.b));
     }
     collidedAt_[c] = clock_;

@@ -100,7 +100,7 @@ class TurnProjection {
   uint32_t apply(const TurnProjectionInput& in, const TurnProjectionSettings& settings) {
     return apply(in, settings, serialFor);
   }
-  /// Pairs the last apply collided again (a pair counts each time).
+  /// Pairs the last apply collided again (a pair counts each time; not those its boxes told apart).
   uint32_t collisions() const { return collisions_; }
 
  private:
@@ -110,6 +110,8 @@ class TurnProjection {
   static constexpr uint32_t kPairChunk = 1024;
   /// Pairs a task of a round's collisions takes: 0.1 to 10 microseconds each, very uneven.
   static constexpr uint32_t kCollideChunk = 16;
+  /// Bodies a task of a round's boxes takes (a hull's box reads its vertices).
+  static constexpr uint32_t kBoxChunk = 64;
   /// Rounds of pairs: the candidates, then those of the bodies each round moved.
   static constexpr int kRounds = 6;
 
@@ -118,9 +120,9 @@ class TurnProjection {
   void scanBodies(uint32_t begin, uint32_t end);
   void scanPairs(uint32_t begin, uint32_t end);
   bool collectCandidates();  // also notes which bodies need a final box, and the held bodies
-  void boxBodies(uint32_t begin, uint32_t end);
+  void boxBodies(uint32_t begin, uint32_t end);  // the bodies listed in toBox_
   void boxPairs();
-  bool gatherRound(int round);
+  bool gatherRound(int round);  // also lists the bodies its pairs need boxes of
   void collideAhead(uint32_t begin, uint32_t end);
   bool resolveRound();
 
@@ -137,6 +139,15 @@ class TurnProjection {
   /// target are not collided again (most pairs of a moved body in a churning pile, and the pairs of
   /// bodies a jam pushed the same way).
   bool mayExceed(uint32_t contact) const;
+  /// Lists `body` for a box (boxBodies) unless it has one.
+  void needBox(uint32_t body);
+  Aabb solvedBox(uint32_t body) const;  // its box at the pose the solver left it
+  /// How far apart (m) the pair's boxes are at the bodies' current poses; negative: they overlap.
+  float boxGap(const ContactEdge& pair) const;
+  /// The depth of the pair's deepest point at the current poses (and its normal, from a to b). Boxes
+  /// apart: minus their gap, without a collision (most pairs of a churning pile that find no point:
+  /// a pair that far apart is no deeper than that). No point: -inf.
+  float depthNow(const ContactEdge& pair, Vec3& normal, bool& collided) const;
   void noteDepth(uint32_t contact, float depth, const Vec3& shift);
   Vec3 relativeShift(uint32_t a, uint32_t b) const { return shift_[a] - shift_[b]; }
   bool takeable(const ContactEdge& pair) const;  // a round may collide it again
@@ -154,17 +165,21 @@ class TurnProjection {
 
   /// A round's collision of one pair, made at the round's start poses.
   struct Ahead {
-    float depth = 0.0f;  // of the deepest point (-inf: no point)
+    float depth = 0.0f;  // of the deepest point (-inf: no point; depthNow)
     Vec3 shift = Vec3::Zero();  // the pair's relative shift at the round's start
     Vec3 normal = Vec3::UnitY();
+    bool collided = false;  // by the narrow phase, not told apart by the boxes
   };
 
   std::vector<uint8_t> turned_;     // per body: |w| dt above the angle
   std::vector<uint8_t> active_;     // per body: moved by the last round
   std::vector<float> spinReach_;    // per body: |w| reach, the fastest any point of it moves about its centre
   std::vector<uint8_t> candidate_;  // per contact: 1 collide again, 2 if the final boxes overlap
-  std::vector<uint8_t> needBox_;    // per body: its final box is asked for
-  std::vector<Aabb> finalBox_;      // per body: box at the final pose (where needBox_)
+  // Per body: its tight box at the pose the solver left it (where boxed_): the stage only translates
+  // bodies, so at any later pose it is this box moved by shift_.
+  std::vector<uint8_t> boxed_;
+  std::vector<Aabb> box_;
+  std::vector<uint32_t> toBox_;     // bodies to box next (boxBodies)
   std::vector<uint32_t> boxPairs_;  // contacts whose final boxes decide
   std::vector<uint8_t> held_;       // per body: pinched between immovable ones: not moved
   std::vector<uint32_t> movedAt_;     // per body: the move clock when it last moved (0: not this step)
@@ -187,16 +202,17 @@ uint32_t TurnProjection::apply(const TurnProjectionInput& in, const TurnProjecti
   parallelFor(n, kBodyChunk, [&](uint32_t b, uint32_t e) { scanBodies(b, e); });
   parallelFor(uint32_t(in.contacts->size()), kPairChunk, [&](uint32_t b, uint32_t e) { scanPairs(b, e); });
   if (!collectCandidates()) return 0;  // most steps of most scenes: nothing more to read
+  auto boxListed = [&] { parallelFor(uint32_t(toBox_.size()), kBoxChunk, [&](uint32_t b, uint32_t e) { boxBodies(b, e); }); };
   if (!boxPairs_.empty()) {
-    parallelFor(n, kBodyChunk, [&](uint32_t b, uint32_t e) { boxBodies(b, e); });
+    boxListed();
     boxPairs();
   }
   // Each round's pairs are collided ahead, in parallel, at the poses the round starts from; then
   // taken in height order, where a pair whose body an earlier pair of the round moved is collided
   // again on the spot (as taking them one by one would).
   for (int round = 0; round < kRounds && gatherRound(round); ++round) {
+    boxListed();
     parallelFor(uint32_t(pairs_.size()), kCollideChunk, [&](uint32_t b, uint32_t e) { collideAhead(b, e); });
-    collisions_ += uint32_t(pairs_.size());
     if (!resolveRound()) break;
   }
   return moved_;

@@ -111,6 +111,26 @@ TEST(TurnProjection, LiftsATurnedBoxOutOfTheGroundToTheKeepDepth) {
   EXPECT_EQ(s.bodies.xf[ground].p, Vec3(0, -0.5f, 0));
 }
 
+// A spinning box 0.1 m into the ground, with a resting box 3 cm to its side: lifted out, it brings
+// its pair with that box into the round, but their boxes are still 3 cm apart, which says the pair
+// is apart without a collision. Only the ground pair is collided, before and after the lift (2);
+// colliding each pair the lift brings in would make 3.
+TEST(TurnProjection, APairWhoseBoxesAreApartIsNotCollided) {
+  Scene s;
+  const uint32_t ground = s.add(BodyKind::Static, Shape::box(Vec3(10, 0.5f, 10)), Vec3(0, -0.5f, 0), 0);
+  const uint32_t box = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0, 0.4f, 0), 2);
+  const uint32_t side = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(1.03f, 0.5f, 0), 2);
+  s.pair(ground, box);
+  s.pairAt(ground, side, Vec3(1.03f, 0, 0), Vec3::UnitY(), 0.0f);
+  s.pair(box, side, 0.03f);
+  s.bodies.w[box] = Vec3(0, 0, 12.0f);  // 0.2 rad a step
+  EXPECT_EQ(s.apply(), 1u);
+  const TurnProjectionSettings d;
+  EXPECT_NEAR(s.bodies.xf[box].p.y(), 0.5f - d.keep, 1e-4f);
+  EXPECT_EQ(s.bodies.xf[side].p, Vec3(1.03f, 0.5f, 0));
+  EXPECT_EQ(s.projection.collisions(), 2u);
+}
+
 // A pair whose points cannot move the narrow phase's margin in a step is not collided again (the
 // solver's push-out handles a slow body), a sphere turns without moving its surface, and depth
 // within the keep depth is left.
