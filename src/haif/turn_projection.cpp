@@ -42,20 +42,22 @@ void collideAt(const TurnProjectionInput& in, uint32_t a, uint32_t b, float& dep
 // bounded amount a step, as the solver's own push-out would (bodies spawned a metre into each other
 // were thrown apart in one step, one of them 0.38 m into the ground).
 // A small body's pair has all three scaled down with it (haif/small_bodies.h).
-float TurnProjection::target(const ContactEdge& e) const {
+float TurnProjection::target(uint32_t c) const {
+  const ContactEdge& e = in_.edges[c];
   const float start = e.deepest, scale = toleranceScale(e);
   return std::max(std::max(settings_.keep * scale, std::min(start, settings_.crushKeep * scale)),
                   start - settings_.crushRecover * scale);
 }
 
 bool TurnProjection::mayExceed(uint32_t c) const {
-  const PairBound& k = bound_[c];
-  return k.known + (relativeShift(k.a, k.b) - k.knownShift).norm() + kBoundRounding > k.target + kLeastMove;
+  const ContactEdge& e = in_.edges[c];
+  const float bound = known_[c] + (relativeShift(e.a, e.b) - knownShift_[c]).norm() + kBoundRounding;
+  return bound > target(c) + kLeastMove;
 }
 
 void TurnProjection::noteDepth(uint32_t c, float depth, const Vec3& shift) {
-  bound_[c].known = std::isfinite(depth) ? depth : 0.0f;  // no point at margin 0: apart
-  bound_[c].knownShift = shift;
+  known_[c] = std::isfinite(depth) ? depth : 0.0f;  // no point at margin 0: apart
+  knownShift_[c] = shift;
 }
 
 bool TurnProjection::jointed(uint32_t i) const { return in_.jointed != nullptr && in_.jointed[i] != 0; }
@@ -75,7 +77,7 @@ bool TurnProjection::begin(const TurnProjectionInput& in, const TurnProjectionSe
   turned_.resize(n);
   spinReach_.resize(n);
   candidate_.resize(pairCount);
-  bound_.resize(pairCount);
+  known_.resize(pairCount);
   return pairCount > 0;
 }
 
@@ -117,29 +119,28 @@ void TurnProjection::scanPairs(uint32_t begin, uint32_t end) {
     // The bound at the step's end: the start depth and how far the pair may close (a pair without
     // points began farther apart than the margin the narrow phase collided it with: its deepest is
     // minus that, ContactEdge).
-    PairBound& k = bound_[c];
-    k = {e.a, e.b, e.deepest + closing, target(e), Vec3::Zero()};
-    if (e.count == 0 ? k.known <= 0.0f : k.known <= k.target + kCrushSlack) continue;
+    known_[c] = e.deepest + closing;
+    if (e.count == 0 ? known_[c] <= 0.0f : known_[c] <= target(c) + kCrushSlack) continue;
     if (settings_.crushKeep <= 0.0f && !turned_[e.a] && !turned_[e.b]) continue;  // crushes left to the solver
     if (e.count == 0) {
       // Boxes from the start, each widened by how far its body may go: cheap, and most pairs stop here.
       const float da = dt * (bodies.v[e.a].norm() + spinReach_[e.a]), db = dt * (bodies.v[e.b].norm() + spinReach_[e.b]);
       if (in_.startBounds[e.a].expanded(da + db).overlaps(in_.startBounds[e.b])) candidate_[c] = 2;
-      else k.known = 0.0f;  // the boxes stay apart
+      else known_[c] = 0.0f;  // the boxes stay apart
       continue;
     }
     if (turned_[e.a] || turned_[e.b]) {
       candidate_[c] = 1;
       continue;
     }
-    const Contact& contact = (*in_.contacts)[c];
+    const Contact& k = (*in_.contacts)[c];
     float predicted = -std::numeric_limits<float>::infinity();
-    for (int i = 0; i < contact.manifold.count; ++i) {
-      const ContactPoint& p = contact.manifold.points[i];
-      const Vec3 rel = bodies.velocityAt(e.b, p.position) - bodies.velocityAt(e.a, p.position);
+    for (int i = 0; i < k.manifold.count; ++i) {
+      const ContactPoint& p = k.manifold.points[i];
+      const Vec3 rel = bodies.velocityAt(k.b, p.position) - bodies.velocityAt(k.a, p.position);
       predicted = std::max(predicted, p.depth + dt * rel.norm());
     }
-    if (predicted > k.target + kCrushSlack) candidate_[c] = 1;
+    if (predicted > target(c) + kCrushSlack) candidate_[c] = 1;
   }
 }
 
@@ -190,6 +191,7 @@ bool TurnProjection::collectCandidates() {
   active_.assign(n, 0);
   movedAt_.assign(n, 0);
   shift_.assign(n, Vec3::Zero());
+  knownShift_.assign(pairCount, Vec3::Zero());
   collidedAt_.assign(pairCount, 0);
   queuedIn_.assign(pairCount, 0);
   clock_ = 1;
@@ -240,7 +242,7 @@ void TurnProjection::boxPairs() {
     const ContactEdge& e = in_.edges[c];
     const float gap = boxGap(e);  // nothing has moved yet
     candidate_[c] = gap > 0.0f ? 0 : 1;
-    if (candidate_[c] == 0) bound_[c].known = -gap;  // the final boxes are apart: the pair is that far
+    if (candidate_[c] == 0) known_[c] = -gap;  // the final boxes are apart: the pair is that far
   }
 }
 
@@ -333,7 +335,7 @@ bool TurnProjection::resolveRound() {
     }
     collidedAt_[c] = clock_;
     // The target is never under `keep`; a pair a later round finds where the last one left it stays.
-    const float excess = depth - bound_[c].target;
+    const float excess = depth - target(c);
     if (!(excess > kLeastMove)) continue;
     float ia = movable(k.a) ? bodies.invMass[k.a] : 0.0f;
     float ib = movable(k.b) ? bodies.invMass[k.b] : 0.0f;

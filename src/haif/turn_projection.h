@@ -126,7 +126,7 @@ class TurnProjection {
   void collideAhead(uint32_t begin, uint32_t end);
   bool resolveRound();
 
-  float target(const ContactEdge& pair) const;
+  float target(uint32_t contact) const;
   /// The pair's tolerance factor, read from its bodies: the contacts are large, and the bound below
   /// runs on many pairs of a churning pile (reading it from the contact was most of its time).
   float toleranceScale(const ContactEdge& pair) const {
@@ -134,7 +134,7 @@ class TurnProjection {
   }
   /// The stage only translates bodies, and a pair's depth depends on where one body is relative to
   /// the other: translated relative to each other by t, it deepens by at most |t|. A pair whose depth
-  /// was at most `known` when one body was shifted `knownShift` relative to the other is at most
+  /// was at most `known_` when one body was shifted `knownShift_` relative to the other is at most
   /// that plus how far that relative shift has changed since. Pairs this bound keeps under their
   /// target are not collided again (most pairs of a moved body in a churning pile, and the pairs of
   /// bodies a jam pushed the same way).
@@ -185,15 +185,8 @@ class TurnProjection {
   std::vector<uint32_t> movedAt_;     // per body: the move clock when it last moved (0: not this step)
   std::vector<uint32_t> collidedAt_;  // per contact: the move clock when it was last collided again
   std::vector<Vec3> shift_;           // per body: the translation this stage has given it this step (m)
-  // Per takeable contact, what the depth bound reads, in one place: the pairs of a moved body are
-  // checked in a serial loop, one random contact after another.
-  struct PairBound {
-    uint32_t a, b;    // its bodies
-    float known;      // a bound on its depth (m) ...
-    float target;     // (the depth it may keep, fixed for the step)
-    Vec3 knownShift;  // ... when its bodies' relative shift was this
-  };
-  std::vector<PairBound> bound_;
+  std::vector<float> known_;          // per contact: a bound on its depth (m) ...
+  std::vector<Vec3> knownShift_;      // ... when its bodies' relative shift was this
   std::vector<uint32_t> pairStart_, pairOf_, fill_;  // per body: its takeable pairs (CSR)
   std::vector<uint32_t> queuedIn_;  // per contact: the round it was last queued in, + 1
   std::vector<std::pair<float, uint32_t>> pairs_;  // (height, contact) of this round, lowest first
