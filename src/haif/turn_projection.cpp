@@ -210,6 +210,12 @@ void TurnProjection::needBox(uint32_t body) {
   toBox_.push_back(body);
 }
 
+void TurnProjection::boxNow(uint32_t body) {
+  if (boxed_[body]) return;
+  boxed_[body] = 1;
+  box_[body] = solvedBox(body);
+}
+
 Aabb TurnProjection::solvedBox(uint32_t body) const {
   Transform solved = in_.bodies->xf[body];
   solved.p -= shift_[body];
@@ -323,11 +329,8 @@ bool TurnProjection::resolveRound() {
     // bound says that it still cannot be deep enough to move.
     if (!fromList || std::max(movedAt_[k.a], movedAt_[k.b]) > roundStart_) {
       if (!mayExceed(c)) continue;
-      for (const uint32_t body : {k.a, k.b})
-        if (!boxed_[body]) {  // a pair a move brought in: its bodies may have no box yet
-          boxed_[body] = 1;
-          box_[body] = solvedBox(body);
-        }
+      boxNow(k.a);  // a pair a move brought in: its bodies may have no box yet
+      boxNow(k.b);
       bool collided;
       depth = depthNow(k, normal, collided);
       collisions_ += collided;

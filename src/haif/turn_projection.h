@@ -141,6 +141,7 @@ class TurnProjection {
   bool mayExceed(uint32_t contact) const;
   /// Lists `body` for a box (boxBodies) unless it has one.
   void needBox(uint32_t body);
+  void boxNow(uint32_t body);  // boxes `body` here unless it has a box (a serial stage's needBox)
   Aabb solvedBox(uint32_t body) const;  // its box at the pose the solver left it
   /// How far apart (m) the pair's boxes are at the bodies' current poses; negative: they overlap.
   float boxGap(const ContactEdge& pair) const;
