@@ -39,7 +39,8 @@ struct ContactEdge {
   /// The pair has points now and had none before this step's narrow phase: a contact just made, so
   /// every point's impulse is zero (nothing to warm start from).
   bool fresh = false;
-  /// Overlapping, between an awake dynamic body and a static or kinematic one (haif/pinch.h).
+  /// Between an awake dynamic body and a static or kinematic one, overlapping, or a kinematic one
+  /// closing a point's gap within the step (haif/pinch.h).
   bool pressedByImmovable = false;
   bool overlapping = false;  ///< some point is deeper than zero (crushes pass along these: haif/pinch.h)
 };

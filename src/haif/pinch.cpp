@@ -47,9 +47,9 @@ uint32_t PinchDetector::mark(const BodyStore& bodies, const ContactEdge* edges, 
 uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* edges, std::vector<Contact>& contacts) {
   if (pressureOfBody_.size() < bodies.size()) pressureOfBody_.resize(bodies.size(), -1);
   pressures_.clear();
-  auto press = [&](uint32_t body, const Vec3& into, const Vec3& push, uint32_t source, uint32_t via, uint32_t from) {
+  auto press = [&](uint32_t body, const Vec3& into, const Vec3& push, uint32_t source, uint32_t via, uint32_t head) {
     pressureOfBody_[body] = int32_t(pressures_.size());
-    pressures_.push_back(Pressure{body, into, push, source, int32_t(via), from});
+    pressures_.push_back(Pressure{body, into, push, source, via, head});
   };
   const uint32_t n = static_cast<uint32_t>(contacts.size());
   // Seeds: a kinematic body whose surface, where it overlaps a dynamic body, moves into it.
@@ -58,7 +58,7 @@ uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* 
     if (bodies.kind[s.other] != BodyKind::Kinematic || pressureOfBody_[s.dyn] >= 0) continue;
     const Vec3 at = contacts[k.contact].manifold.points[0].position;
     const Vec3 surface = bodies.velocityAt(s.other, at);
-    if (surface.dot(s.into) > 0.0f) press(s.dyn, s.into, s.into, s.other, k.contact, s.other);
+    if (surface.dot(s.into) > 0.0f) press(s.dyn, s.into, s.into, s.other, k.contact, uint32_t(pressures_.size()));
   }
   if (pressures_.empty()) return 0;
   // Passed on, in contact order (the same on any thread count), to the bodies ahead, along the
@@ -82,10 +82,10 @@ uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* 
       if (pa < 0 && pb < 0) continue;
       const Vec3& ab = contacts[ci].manifold.points[0].normal;
       if (pa >= 0 && ab.dot(pressures_[pa].into) >= kAhead) {
-        press(e.b, ab, pressures_[pa].push, pressures_[pa].source, ci, e.a);
+        press(e.b, ab, pressures_[pa].push, pressures_[pa].source, ci, pressures_[pa].head);
         grew = true;
       } else if (pb >= 0 && -ab.dot(pressures_[pb].into) >= kAhead) {
-        press(e.a, -ab, pressures_[pb].push, pressures_[pb].source, ci, e.b);
+        press(e.a, -ab, pressures_[pb].push, pressures_[pb].source, ci, pressures_[pb].head);
         grew = true;
       }
     }
@@ -105,12 +105,12 @@ uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* 
         s.into.dot(pressures_[first].push) >= kOpposed)
       continue;
     setPinched(contacts, k.contact, true);
-    for (int32_t at = first; at >= 0 && !pressures_[at].crushed;) {
-      Pressure& q = pressures_[at];
-      q.crushed = true;
-      setPinched(contacts, uint32_t(q.via), true);
+    for (const uint32_t end : {uint32_t(first), pressures_[first].head}) {
+      Pressure& q = pressures_[end];
+      if (q.marked) continue;
+      q.marked = true;
+      if (end == q.head) setPinched(contacts, q.via, true);
       if (noteOfBody_[q.body] < 0 || !notes_[noteOfBody_[q.body]].pinched) ++crushed;
-      at = q.from == q.source ? -1 : pressureOfBody_[q.from];
     }
   }
   for (const Pressure& q : pressures_) pressureOfBody_[q.body] = -1;

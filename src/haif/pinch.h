@@ -5,6 +5,8 @@
 // a pile into a wall) the kinematic one asks it to move into the other. No velocity meets all of its
 // contacts, so each sweep adds impulse to both sides, warm starting carries it into the next step,
 // and when one side lets go the body leaves with all of it (80 m/s out of a pit swept at 14 m/s).
+// A kinematic body presses where its surface overlaps the body or closes a point's gap within the
+// step (the speculative row then asks the body to move away as a push-out would).
 // Such contacts are marked (Contact::pinched) and solved without push-out and without impulses
 // carried between steps, and the static side is solved last, so the body stays out of the static
 // world and the kinematic body passes it instead.
@@ -15,8 +17,11 @@
 // blade meeting a wall threw 7435 bodies against the speed bound in 1200 steps). The pressure of a
 // kinematic body moving into a dynamic one is passed on through overlapping contacts whose normal
 // points the same way (within 60 degrees); a pressed body that touches another immovable body
-// pushing it back (more than 120 degrees away) closes a crush, and every contact of its row, back to
-// the kinematic body, is marked pinched.
+// pushing it back (more than 120 degrees away) closes a crush, and the row's two ends are marked
+// pinched: its contact with that body and the kinematic body's contact with the row's first body.
+// With both ends carrying nothing between steps the row's impulses cannot grow; the links between
+// its dynamic bodies keep theirs (in a pile they carry its weight, and rows run through it to a wall
+// far from any real crush: marked as well, a pile stirred by a paddle sank twice as deep).
 #pragma once
 
 #include "core/body_store.h"
@@ -57,7 +62,7 @@ class PinchDetector {
   };
   static Side sideOf(const BodyStore& bodies, const ContactEdge& e, const Contact& c);
 
-  // The crushes (header comment): returns the bodies found crushed that were not pinched already.
+  // The crushes (header comment): returns the bodies at their ends that were not pinched already.
   uint32_t markCrushes(const BodyStore& bodies, const ContactEdge* edges, std::vector<Contact>& contacts);
 
   struct Note {
@@ -84,13 +89,12 @@ class PinchDetector {
     Vec3 into = Vec3::Zero();  // the direction the body is pushed
     Vec3 push = Vec3::Zero();  // the direction the kinematic body pushed the first body of the row
     uint32_t source = 0;       // the kinematic body the pressure comes from
-    int32_t via = -1;          // the contact it came through
-    uint32_t from = 0;         // the body on that contact's other side (== source at the first)
-    bool crushed = false;      // its row has been marked
+    uint32_t via = 0;          // the contact it came through
+    uint32_t head = 0;         // the Pressure of its row's first body (the one the kinematic body touches)
+    bool marked = false;       // its body's end of a crush is marked (counted once)
   };
   std::vector<int32_t> pressureOfBody_;  // per body: its Pressure this step, or -1
   std::vector<Pressure> pressures_;
-  std::vector<uint32_t> crushEnds_;      // immovable contacts that close a crush
 };
 
 }  // namespace haif

@@ -20,9 +20,9 @@ void World::orderContactsTopDown() {
       const ContactEdge& c = contactEdges_[ids[j]];
       float h = up.dot(bodies_.xf[c.a].p + bodies_.xf[c.b].p);
       // A pinched body's static contacts come last, its kinematic ones first: the sweep's last word
-      // keeps it out of the static world, and the kinematic body passes it (haif/pinch.h). The
-      // contacts inside a crushed row keep their place.
-      if (pinchedBodies_ > 0 && contacts_[ids[j]].pinched && !(bodies_.isDynamic(c.a) && bodies_.isDynamic(c.b))) {
+      // keeps it out of the static world, and the kinematic body passes it (haif/pinch.h; so do a
+      // crushed row's ends).
+      if (pinchedBodies_ > 0 && contacts_[ids[j]].pinched) {
         const bool kinematic = bodies_.kind[c.a] == BodyKind::Kinematic || bodies_.kind[c.b] == BodyKind::Kinematic;
         h = kinematic ? std::numeric_limits<float>::max() : std::numeric_limits<float>::lowest();
       }
