@@ -52,7 +52,7 @@ uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* 
     pressures_.push_back(Pressure{body, into, push, source, via, head});
   };
   const uint32_t n = static_cast<uint32_t>(contacts.size());
-  // Seeds: a kinematic body whose surface, where it overlaps a dynamic body, moves into it.
+  // Seeds: a kinematic body whose surface, where it presses a dynamic body, moves into it.
   for (const Candidate& k : candidates_) {
     const Side s = sideOf(bodies, edges[k.contact], contacts[k.contact]);
     if (bodies.kind[s.other] != BodyKind::Kinematic || pressureOfBody_[s.dyn] >= 0) continue;
