@@ -121,13 +121,12 @@ namespace {
 
 // What the stages after the narrow phase need of a contact, copied while it is in cache. `apart`:
 // how far apart a pair without points is known to be (the margin it was collided with).
-inline void noteEdge(const Contact& c, ContactEdge& edge, bool againstImmovable, float apart, bool fresh) {
+inline void noteEdge(const Contact& c, ContactEdge& edge, float apart, bool fresh) {
   edge.fresh = fresh && c.manifold.count > 0;
   edge.count = uint8_t(c.manifold.count);
   edge.deepest = c.manifold.count > 0 ? c.manifold.deepest() : -apart;
   edge.nearest = c.manifold.count > 0 ? c.manifold.nearest() : -apart;
   edge.overlapping = edge.deepest > 0.0f;
-  edge.pressedByImmovable = againstImmovable && edge.overlapping;
 }
 
 // A pair placed at rest with every point apart by less than the skin hovers: it counts as touching
@@ -216,8 +215,8 @@ void World::narrowPhase() {
   // in parallel, not in the serial pass).
   auto finish = [&](uint32_t ci, const Contact& c, ContactEdge& edge, bool againstImmovable, float apart,
                     bool fresh = false) {
-    noteEdge(c, edge, againstImmovable, apart, fresh);
-    if (againstImmovable && !edge.overlapping) edge.pressedByImmovable = closesPastItsGap(c);
+    noteEdge(c, edge, apart, fresh);
+    edge.pressedByImmovable = againstImmovable && (edge.overlapping || closesPastItsGap(c));
     if (edge.count == 0 && !broadPhase_.fatOverlap(edge.a, edge.b)) collision_.pairFlags[ci] |= kPairApart;
   };
   parallelFor(n, kPairGrain, [&](uint32_t begin, uint32_t end) {
