@@ -181,6 +181,10 @@ class World {
   /// joints and not split, is deeper than this step's `mainSweeps` carry a landing through
   /// (WorldSettings::deepLayersPerSweep): solved as a small island too, with room for all its rows.
   bool tooDeepForSweeps(uint32_t k, int mainSweeps) const;
+  /// Main sweeps beyond the step's `mainSweeps` that swept island k needs this step: where a body
+  /// moves and the island is deeper (World::supportLayers) than mainSweeps settle
+  /// (WorldSettings::movingLayersPerSweep), enough to settle its depth; 0 elsewhere.
+  int sweepsForDepth(uint32_t k, int mainSweeps) const;
   /// Island k may have its contacts solved through its joints (dynamics/joint_coupling.h): joints and
   /// at most kCheapLinks contacts, not split. Whether it is, prepareIsland decides from its rows.
   bool mayCoupleJoints(uint32_t k) const;
@@ -271,6 +275,7 @@ class World {
   // their normal rows together: per island the system it uses, or -1; the systems grow to the most
   // such islands seen.
   std::vector<int32_t> denseOf_;
+  std::vector<int> depthSweeps_;  // per island, this step: main sweeps added for its depth (sweepsForDepth)
   std::vector<int> denseRows_;  // per island: the rows its dense system has room for (0: none)
   std::vector<DenseNormalSystem> denseSystems_;
   std::vector<double> denseStorage_;  // their matrices, 3 per contact rows a side (grows, then reused)

@@ -41,7 +41,7 @@ std::string formatError(const std::string& path, const std::string& text, size_t
 void parseSettings(const JsonNode& node, SimSettings& settings) {
   WorldSettings& s = settings.world;
   checkKeys(node, {"dt", "gravity", "iterations", "omega", "beta", "slop", "skin", "sleeping", "accelerate", "momentum_layers",
-                   "chain_solve", "exact_mass_ratio", "deep_layers_per_sweep", "tolerance_thickness", "wide_solve", "reuse_manifolds", "rest_damping", "frames"});
+                   "chain_solve", "exact_mass_ratio", "deep_layers_per_sweep", "moving_layers_per_sweep", "tolerance_thickness", "wide_solve", "reuse_manifolds", "rest_damping", "frames"});
   s.dt = optPositive(node, "dt", s.dt);
   if (s.dt > 1.0f) fail(node.member("dt"), "must be <= 1 s (got " + formatNumber(s.dt) + "; 60 Hz is 0.0166666667)");
   const JsonNode g = node.member("gravity");
@@ -65,6 +65,7 @@ void parseSettings(const JsonNode& node, SimSettings& settings) {
   if (node.member("chain_solve").present()) s.chainSolve = readBool(node.member("chain_solve"));
   s.exactMassRatio = optNonNegative(node, "exact_mass_ratio", s.exactMassRatio);
   s.deepLayersPerSweep = optNonNegative(node, "deep_layers_per_sweep", s.deepLayersPerSweep);
+  s.movingLayersPerSweep = optNonNegative(node, "moving_layers_per_sweep", s.movingLayersPerSweep);
   s.toleranceThickness = optNonNegative(node, "tolerance_thickness", s.toleranceThickness);
   if (node.member("wide_solve").present()) s.wideSolve = readBool(node.member("wide_solve"));
   if (node.member("reuse_manifolds").present()) s.reuseManifolds = readBool(node.member("reuse_manifolds"));

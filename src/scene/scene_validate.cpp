@@ -328,6 +328,7 @@ bool validateScene(const SceneDesc& scene, SceneIssue& issue) {
       !c.nonNegative("settings.skin", s.contact.skin) ||
       !c.nonNegative("settings.exact_mass_ratio", s.exactMassRatio) ||
       !c.nonNegative("settings.deep_layers_per_sweep", s.deepLayersPerSweep) ||
+      !c.nonNegative("settings.moving_layers_per_sweep", s.movingLayersPerSweep) ||
       !c.nonNegative("settings.tolerance_thickness", s.toleranceThickness) ||
       !c.nonNegative("settings.momentum_layers", s.momentumLayers))
     return false;

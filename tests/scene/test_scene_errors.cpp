@@ -112,6 +112,7 @@ TEST(SceneErrors, SettingsRanges) {
   EXPECT_ERROR(R"({"settings": {"beta": 1.5}})", "1.5", "settings.beta: must be in [0, 1] (got 1.5)");
   EXPECT_ERROR(R"({"settings": {"momentum_layers": -2}})", "-2", "settings.momentum_layers: must be >= 0 (got -2)");
   EXPECT_ERROR(R"({"settings": {"deep_layers_per_sweep": -3}})", "-3", "settings.deep_layers_per_sweep: must be >= 0 (got -3)");
+  EXPECT_ERROR(R"({"settings": {"moving_layers_per_sweep": -1}})", "-1", "settings.moving_layers_per_sweep: must be >= 0 (got -1)");
   EXPECT_ERROR(R"({"settings": {"tolerance_thickness": -0.1}})", "-0.1", "settings.tolerance_thickness: must be >= 0 (got -0.1)");
   EXPECT_ERROR(R"({"settings": {"rest_damping": 2}})", "2}", "settings.rest_damping: must be in [0, 1] (got 2; 0 turns it off)");
   EXPECT_ERROR(R"({"settings": {"frames": -1}})", "-1", "settings.frames: must be in [1, 100000000] (got -1)");

@@ -127,7 +127,7 @@ TEST(SceneFiles, KeysAreReadIntoTheDescription) {
   const SceneDesc s = parseOk(R"({
     "name": "custom",
     "settings": {"dt": 0.01, "gravity": -3, "iterations": 7, "omega": 1.3, "beta": 0.1, "slop": 0.01, "skin": 0.0002, "sleeping": true, "frames": 50,
-                 "chain_solve": false, "exact_mass_ratio": 0, "deep_layers_per_sweep": 5, "tolerance_thickness": 0.02, "reuse_manifolds": false, "momentum_layers": 4, "rest_damping": 0.02},
+                 "chain_solve": false, "exact_mass_ratio": 0, "deep_layers_per_sweep": 5, "moving_layers_per_sweep": 0.7, "tolerance_thickness": 0.02, "reuse_manifolds": false, "momentum_layers": 4, "rest_damping": 0.02},
     "materials": {"ice": {"friction": 0.05, "restitution": 0.1, "density": 900}, "default": {"friction": 0.9}},
     "camera": {"eye": [1, 2, 3], "target": [0, 1, 0], "up": [0, 2, 0], "fov_deg": 60},
     "bodies": [
@@ -149,6 +149,7 @@ TEST(SceneFiles, KeysAreReadIntoTheDescription) {
   EXPECT_FALSE(s.settings.world.chainSolve);
   EXPECT_EQ(s.settings.world.exactMassRatio, 0.0f);
   EXPECT_EQ(s.settings.world.deepLayersPerSweep, 5.0f);
+  EXPECT_EQ(s.settings.world.movingLayersPerSweep, 0.7f);
   EXPECT_EQ(s.settings.world.toleranceThickness, 0.02f);
   EXPECT_FALSE(s.settings.world.reuseManifolds);
   EXPECT_FLOAT_EQ(s.settings.world.momentumLayers, 4.0f);
