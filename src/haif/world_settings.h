@@ -58,7 +58,8 @@ struct WorldSettings {
   /// the sway grew until the tower fell (towers of crossed 2-block layers, nudged or landing through
   /// 1 cm gaps, fell from 8 layers at 4 iterations and from 12 at 10; brick walls from 14 at 4). At
   /// rest the warm start holds them, and the step's count stands. Chains, islands solved together,
-  /// jointed and split islands keep the step's count. 0: off.
+  /// jointed and split islands keep the step's count, and so does every island under a frame budget
+  /// (budgetMs > 0: the controller plans the sweeps). 0: off.
   float movingLayersPerSweep = 0.5f;
   bool reuseManifolds = true;       ///< keep a pair's manifold while its bodies keep still (manifold_cache.h)
   JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)

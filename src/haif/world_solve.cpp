@@ -363,13 +363,17 @@ bool World::tooDeepForSweeps(uint32_t k, int mainSweeps) const {
 // iterations and from 12 at 10, and stood with one main sweep per half layer (at 30 iterations a
 // 12-layer tower nudged at 0.3 m/s stood; at 20 it fell). Only while a body moves: at rest the warm
 // start holds the same towers at 4 iterations, and a resting pile pays nothing (many_pyramids' 196
-// ten-layer pyramids keep their count). Split islands are the giant ones, whose strips the
-// controller plans with; chains and islands solved together are solved exactly.
+// ten-layer pyramids keep their count). Split islands are the giant ones; chains and islands solved
+// together are solved exactly.
 int World::sweepsForDepth(uint32_t k, int mainSweeps) const {
   const Island& isl = islands_.islands[k];
   const float perSweep = settings_.movingLayersPerSweep;
   const float g = settings_.gravity.norm();
-  if (!(perSweep > 0.0f) || !(g > 0.0f) || isl.jointCount > 0 || layoutOf_[k] >= 0 || isl.contactCount == 0)
+  // Under a frame budget the controller's count stands: it plans the step's sweeps over every row,
+  // and sweeps it did not plan for (a drum's churning pile, deep and never at rest) took drum_fast's
+  // missed steps from 1.0 % to 6.9 % at 4 ms. Where the budget allows, its counts are the towers' own.
+  if (!(perSweep > 0.0f) || !(g > 0.0f) || settings_.budgetMs > 0.0 || isl.jointCount > 0 || layoutOf_[k] >= 0 ||
+      isl.contactCount == 0)
     return 0;
   const float moving = kDepthSweepSpeed * g * settings_.dt;
   bool moves = false;

@@ -242,6 +242,8 @@ bool readReplayLog(const std::string& statsPath, ReplayLog& out, std::string& er
     }
     log.iMin = int(iMin->get<int64_t>());
   }
+  const auto budget = j.find("budget_ms");
+  if (budget != j.end() && budget->is_number()) log.hadBudget = budget->get<double>() > 0.0;
   out = std::move(log);
   return true;
 }

@@ -52,6 +52,7 @@ struct ReplayLog {
   std::string sceneHash;         ///< summary.json "scene_hash", 16 hex digits
   float residualTolerance = 0.f; ///< islands stopped below this correction (0: never)
   int iMin = 1;                  ///< ... but not before this many sweeps
+  bool hadBudget = true;         ///< summary.json "budget_ms" > 0: a fixed run had no frame budget
 };
 
 /// Reads RUN/stats.csv (`statsPath`) and RUN/summary.json. One error line naming the file on failure.

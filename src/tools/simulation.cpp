@@ -77,7 +77,9 @@ bool makeSimulation(const std::string& scenePath, const SolverSpec& spec, int th
     // Replay reproduces the recorded run: its counts and its early-stopping rule, none in a fixed
     // run (a replay that stopped converged islands early ran 4 sweeps where the run had run 10).
     w.settings().residualTolerance = log.residualTolerance;
-    w.settings().budgetMs = spec.budgetMs;
+    // ... and its budget or none: without one, islands in motion get sweeps for their depth
+    // (World::sweepsForDepth), which a budget leaves to the controller.
+    w.settings().budgetMs = log.hadBudget ? spec.budgetMs : 0.0;
     sim.replaySteps = int(log.iterations.size());
     auto c = std::make_unique<ReplayController>(std::move(log.iterations));
     c->iMin = log.iMin;

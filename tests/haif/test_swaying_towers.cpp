@@ -146,6 +146,21 @@ TEST(SwayingTowers, ARestingTowerKeepsTheStepsCount) {
   EXPECT_EQ(run(WorldSettings{}.movingLayersPerSweep), run(0.0f));
 }
 
+TEST(SwayingTowers, UnderAFrameBudgetTheControllersCountStands) {
+  // The controller plans a budgeted step's sweeps over every row: sweeps it did not plan for took a
+  // churning drum past its budget. The same nudged tower with a budget: the same state either way.
+  auto run = [](float movingLayersPerSweep) {
+    WorldSettings ws = settingsAt(4, movingLayersPerSweep);
+    ws.budgetMs = 4.0;
+    World w(ws);
+    addGround(w);
+    nudge(w, addCrossedTower(w, 12, 0.0f), 0.05f);
+    for (int s = 0; s < 120; ++s) w.step();
+    return w.stateHash();
+  };
+  EXPECT_EQ(run(WorldSettings{}.movingLayersPerSweep), run(0.0f));
+}
+
 TEST(SwayingTowers, SameStateForAnyThreadCount) {
   // Four nudged towers, solved concurrently island by island.
   test::expectSameStateForThreadCounts([](int threads) {
