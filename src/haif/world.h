@@ -183,7 +183,8 @@ class World {
   bool tooDeepForSweeps(uint32_t k, int mainSweeps) const;
   /// Main sweeps beyond the step's `mainSweeps` that swept island k needs this step: where a body
   /// moves and the island is deeper (World::supportLayers) than mainSweeps settle
-  /// (WorldSettings::movingLayersPerSweep), enough to settle its depth; 0 elsewhere.
+  /// (WorldSettings::movingLayersPerSweep), enough to settle its depth; 0 elsewhere, and under a
+  /// frame budget, whose sweeps the controller plans.
   int sweepsForDepth(uint32_t k, int mainSweeps) const;
   /// Island k may have its contacts solved through its joints (dynamics/joint_coupling.h): joints and
   /// at most kCheapLinks contacts, not split. Whether it is, prepareIsland decides from its rows.
