@@ -481,6 +481,7 @@ SweepResult solveExactIteration(BodyStore& bodies, ContactConstraint* cs, ChainL
       solved = false;
     }
   }
+  if (!solved) system.unsettled();
   system.holdChange(bodies);  // what the last round let go of
   // When the rounds did not settle, the manifolds' own passes.
   for (uint32_t j = 0; j < n && !solved; ++j) {
@@ -519,6 +520,7 @@ struct ChainSystem {
   void beginSweep(BodyStore&, bool) {}
   void holdChange(BodyStore&) {}
   void committed(const ContactConstraint&, const float*) {}
+  void unsettled() {}
   void changed(uint32_t, const Vec3&, const Vec3&) {}
   bool noteChanges() const { return false; }
 };
@@ -593,11 +595,13 @@ struct DenseSystem {
     if (joints) addBodyChange(*joints, body, dv, dw);
   }
   bool noteChanges() const { return joints != nullptr; }
+  void unsettled() { ++d.unsettledSweeps; }
 
   bool factor(bool rowsChanged) {
     bool same = !rowsChanged;
     for (uint32_t j = 0; j < n && same; ++j) same = links[j].active == links[j].factoredActive;
     if (same) return true;
+    ++d.factors;
     int rows = 0;
     for (uint32_t j = 0; j < n; ++j) {
       links[j].factoredActive = links[j].active;

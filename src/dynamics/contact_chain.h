@@ -77,6 +77,7 @@ struct DenseNormalSystem {
   /// Uses `storage` (doublesFor(rowsHeld) doubles) for systems of up to rowsHeld rows.
   void attach(double* storage, int rowsHeld) {
     rows = rank = 0;  // nothing factored: a system whose links are all let go substitutes nothing
+    unsettledSweeps = factors = 0;
     stride = rowsHeld;
     factor = storage;
     nullBasis = factor + size_t(rowsHeld) * size_t(rowsHeld);
@@ -97,6 +98,11 @@ struct DenseNormalSystem {
   bool jointsHeld = false, heldWithBias = false;
   /// Solved through joints: the tree's answer to a row did not hold its joints (jointResponse).
   bool jointsUnsound = false;
+  /// Sweeps of this step whose rounds did not settle (each factored the system up to kChainRounds
+  /// times and then fell back on the manifolds' passes).
+  int unsettledSweeps = 0;
+  /// Factorisations made this step (the system's work, the cube of its rows each).
+  int factors = 0;
 };
 
 /// Builds the links of an island's contacts `cs[0, n)` for the dense solve: at least `minLinks` and

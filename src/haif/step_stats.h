@@ -40,6 +40,7 @@ struct StepStats {
   uint32_t pinchedBodies = 0;     ///< dynamic bodies pressed from opposite sides by static or kinematic ones (haif/pinch.h)
   uint32_t turnProjected = 0;     ///< pairs a fast turn, a crush or a blow carried into each other, moved apart after the step (haif/turn_projection.h)
   uint32_t speedLimited = 0;      ///< times a body was slowed to the speed bound this step (haif/speed_bound.h)
+  uint32_t exactFactors = 0;      ///< factorisations of the systems of islands solved together (dynamics/contact_chain.h)
 };
 
 }  // namespace haif

@@ -1,0 +1,78 @@
+// An island solved together (a mass ratio, dense rows) whose rounds do not settle: each sweep
+// factored its system up to kChainRounds times, then fell back on the manifolds' passes. A 20 t
+// ball come to rest among tower_collapse's 250 kg bricks (63 contacts) did so every sweep: 80
+// factors and 15 ms a step. Two such sweeps in a step and the island is swept for the rest of it.
+#include "support/physics_test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <vector>
+
+namespace haif {
+namespace {
+
+using test::addBox;
+using test::addGround;
+
+struct BedRun {
+  uint32_t mostFactors = 0;  // most factorisations in one step
+  float deepest = 0.0f;      // how far the ball's centre went below its height resting on the bed (m)
+};
+
+// A 20 t iron ball (r 1.2 m) rolled at 0.3 m/s onto a bed of 250 kg bricks two layers deep, 3 cm
+// apart: the islands of the ball and the bricks under it are solved together (a ratio of 80).
+uint32_t addBallOnBed(World& w) {
+  addGround(w);
+  for (int i = 0; i < 5; ++i)
+    for (int layer = 0; layer < 2; ++layer)
+      for (int k = 0; k < 8; ++k)
+        addBox(w, Vec3(-2.06f + 1.03f * float(i), 0.25f + 0.51f * float(layer), -1.82f + 0.52f * float(k)),
+               Vec3(0.5f, 0.25f, 0.25f), 250.0f);
+  BodyDef d;
+  d.shape = Shape::sphere(1.2f);
+  d.xf.p = Vec3(0.3f, 3.2f, 0.2f);
+  d.linearVelocity = Vec3(0.3f, 0.0f, 0.0f);
+  d.mass = 20000.0f;
+  d.friction = 0.4f;
+  d.restitution = 0.1f;
+  return w.addBody(d);
+}
+
+WorldSettings settingsFor(int threads) {
+  WorldSettings ws;
+  ws.iterations = 10;
+  ws.threads = threads;
+  return ws;
+}
+
+TEST(UnsettledRounds, AnIslandWhoseRoundsDoNotSettleStopsFactoringItsSystem) {
+  // Here, as in tower_collapse, sweeps of these islands ended with their rounds unsettled: up to 75
+  // factorisations in a step before, every sweep's rounds run to the end. Now at most two sweeps'
+  // rounds an island, then sweeps.
+  World w(settingsFor(2));
+  const uint32_t ball = addBallOnBed(w);
+  const float onBed = 1.01f + 1.2f;  // the bed's top plus the radius
+  BedRun r;
+  for (int s = 0; s < 600; ++s) {
+    w.step();
+    r.mostFactors = std::max(r.mostFactors, w.lastStats().exactFactors);
+    r.deepest = std::max(r.deepest, onBed - w.bodies().xf[ball].p.y());
+  }
+  EXPECT_GT(r.mostFactors, 0u);   // the bed is solved together
+  EXPECT_LE(r.mostFactors, 40u);  // two sweeps' rounds for an island, and a few small islands
+  // The bed holds the ball (the bricks do not come to rest under it: docs/solver.md, Known limits).
+  EXPECT_LT(r.deepest, 0.1f);
+}
+
+TEST(UnsettledRounds, SameStateForAnyThreadCount) {
+  test::expectSameStateForThreadCounts([](int threads) {
+    World w(settingsFor(threads));
+    addBallOnBed(w);
+    for (int s = 0; s < 200; ++s) w.step();
+    return w.stateHash();
+  });
+}
+
+}  // namespace
+}  // namespace haif
