@@ -41,6 +41,7 @@ struct StepStats {
   uint32_t turnProjected = 0;     ///< pairs a fast turn, a crush or a blow carried into each other, moved apart after the step (haif/turn_projection.h)
   uint32_t speedLimited = 0;      ///< times a body was slowed to the speed bound this step (haif/speed_bound.h)
   uint32_t exactFactors = 0;      ///< factorisations of the systems of islands solved together (dynamics/contact_chain.h)
+  uint32_t mostUnsettledSweeps = 0;  ///< most sweeps of one island solved together whose rounds did not settle
 };
 
 }  // namespace haif

@@ -585,10 +585,13 @@ void World::summariseIterations() {
   uint32_t counted = 0;
   float residual = 0.0f;
   uint64_t rowIt = 0;
-  uint32_t factors = 0;
+  uint32_t factors = 0, unsettled = 0;
   for (uint32_t k = 0; k < m; ++k) {
     const Island& isl = islands_.islands[k];
-    if (k < denseOf_.size() && denseOf_[k] >= 0) factors += uint32_t(denseSystems_[denseOf_[k]].factors);
+    if (k < denseOf_.size() && denseOf_[k] >= 0) {
+      factors += uint32_t(denseSystems_[denseOf_[k]].factors);
+      unsettled = std::max(unsettled, uint32_t(denseSystems_[denseOf_[k]].unsettledSweeps));
+    }
     if (isl.contactCount + isl.jointCount == 0) continue;
     lo = std::min(lo, spare_.iterations[k]);
     hi = std::max(hi, spare_.iterations[k]);
@@ -603,6 +606,7 @@ void World::summariseIterations() {
   stats_.residual = residual;
   stats_.rowIterations = rowIt;
   stats_.exactFactors = factors;
+  stats_.mostUnsettledSweeps = unsettled;
 }
 
 }  // namespace haif
