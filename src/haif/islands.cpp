@@ -15,7 +15,7 @@ void IslandBuilder::uniteContacts(const BodyStore& bodies, const ContactEdge* co
       ++touching;
       points += c.count;
       const bool dynA = bodies.isAwakeDynamic(c.a), dynB = bodies.isAwakeDynamic(c.b);
-      if (dynA && dynB) unite(c.a, c.b);
+      if (dynA && dynB && !c.apart) unite(c.a, c.b);
       // A contact belongs to the island of its (first) awake dynamic body.
       body = dynA ? c.a : dynB ? c.b : kNoBody;
     }
@@ -54,7 +54,12 @@ void IslandBuilder::gather(const BodyStore& bodies, const ContactEdge* contacts,
     ++unsorted_[islandOfRoot_[r]].bodyCount;
   }
   auto islandOfContact = [&](uint32_t ci) -> int32_t {
-    return contactBody_[ci] == kNoBody ? -1 : islandOfBody_[contactBody_[ci]];
+    if (contactBody_[ci] == kNoBody) return -1;
+    const ContactEdge& e = contacts[ci];
+    const int32_t k = islandOfBody_[contactBody_[ci]];
+    // Apart, between two islands: it holds nothing this step and belongs to neither.
+    if (e.apart && bodies.isAwakeDynamic(e.a) && bodies.isAwakeDynamic(e.b) && islandOfBody_[e.a] != islandOfBody_[e.b]) return -1;
+    return k;
   };
   for (uint32_t ci = 0; ci < nc; ++ci) {
     const int32_t k = islandOfContact(ci);

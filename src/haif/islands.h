@@ -43,6 +43,10 @@ struct ContactEdge {
   /// closing a point's gap within the step (haif/pinch.h).
   bool pressedByImmovable = false;
   bool overlapping = false;  ///< some point is deeper than zero (crushes pass along these: haif/pinch.h)
+  /// Between two dynamic bodies, every point farther apart than the pair can close within the step
+  /// (World::narrowPhase): the contact holds nothing this step, so it joins no two bodies into one
+  /// island.
+  bool apart = false;
 };
 
 struct IslandSet {
@@ -63,7 +67,8 @@ struct IslandSet {
 /// numbering and their order are the same for every thread count.
 class IslandBuilder {
  public:
-  /// A contact joins its bodies when it has points and both bodies are awake dynamic ones. Joints
+  /// A contact joins its bodies when it has points, both bodies are awake dynamic ones and it is not
+  /// `apart`; an apart contact between two islands belongs to neither (it is not solved this step). Joints
   /// are edges like contacts: an unbroken joint between two awake dynamic bodies joins them; a joint
   /// to the world, a static or a kinematic body belongs to the island of its dynamic body.
   /// `parallelFor(n, grain, f)` runs f(begin, end) over [0, n) in ranges, possibly concurrently.

@@ -61,6 +61,14 @@ struct WorldSettings {
   /// jointed and split islands keep the step's count, and so does every island under a frame budget
   /// (budgetMs > 0: the controller plans the sweeps). 0: off.
   float movingLayersPerSweep = 0.5f;
+  /// A contact between two dynamic bodies whose points are all farther apart than the pair can close
+  /// within the step (ContactEdge::apart) joins no two bodies into one island: a bed of bricks laid
+  /// 2-3 cm apart is then many islands, and a heavy ball landing on it an island of the few bricks
+  /// under it, solved together (a 20 t ball on 250 kg bricks comes to rest instead of bouncing and
+  /// rolling off). Off by default: a landing solved so can leave the island larger than 64 contacts
+  /// the next step, swept from the landing's impulses, and at fixed 4 that threw a ball up at
+  /// 9.6 m/s (docs/solver.md, Known limits: "A heavy ball among light bricks").
+  bool splitApartContacts = false;
   bool reuseManifolds = true;       ///< keep a pair's manifold while its bodies keep still (manifold_cache.h)
   JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)
   SpeedBoundSettings speedBound;    ///< the bound on every body's speed (haif/speed_bound.h)

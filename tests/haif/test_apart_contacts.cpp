@@ -1,0 +1,120 @@
+// WorldSettings::splitApartContacts (off by default): contacts whose points are all farther apart
+// than their bodies can close in a step join no two bodies into one island (ContactEdge::apart). A
+// bed of bricks laid 2-3 cm apart is one island through its speculative contacts: too large to be
+// solved together, so a 20 t ball landing on it is swept, sinks 2-3 cm into the light bricks,
+// bounces on its push-out and rolls off the bed. Split, the ball's island is the few bricks under
+// it, solved together from the landing.
+#include "haif/world.h"
+
+#include "support/physics_test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace haif {
+namespace {
+
+using test::addBox;
+using test::addGround;
+
+// Two boxes side by side on the ground, `gap` apart along x, the second moving toward the first at
+// `speed`. Returns whether they share an island after one step's island building.
+bool shareAnIsland(float gap, float speed, bool split = true) {
+  WorldSettings ws;
+  ws.iterations = 10;
+  ws.splitApartContacts = split;
+  World w(ws);
+  addGround(w);
+  const uint32_t a = addBox(w, Vec3(0.0f, 0.5f, 0.0f));
+  BodyDef d;
+  d.shape = Shape::box(Vec3::Constant(0.5f));
+  d.xf.p = Vec3(1.0f + gap, 0.5f, 0.0f);
+  d.linearVelocity = Vec3(-speed, 0.0f, 0.0f);
+  d.mass = 1.0f;
+  const uint32_t b = w.addBody(d);
+  w.step();
+  return w.islandOf(a) >= 0 && w.islandOf(a) == w.islandOf(b);
+}
+
+TEST(ApartContacts, BodiesTooFarApartToTouchThisStepAreSeparateIslands) {
+  // 1.5 cm apart (inside the 2 cm margin, so the pair has speculative points) and at rest: apart.
+  EXPECT_FALSE(shareAnIsland(0.015f, 0.0f));
+  // Within the slop of each other: one island, as before.
+  EXPECT_TRUE(shareAnIsland(0.002f, 0.0f));
+  // 1.5 cm apart but closing at 2 m/s (3.3 cm a step): one island, so the contact is solved.
+  EXPECT_TRUE(shareAnIsland(0.015f, 2.0f));
+  // Off (the default), the speculative contact joins them.
+  EXPECT_TRUE(shareAnIsland(0.015f, 0.0f, false));
+}
+
+// A 20 t iron ball (r 1.2 m) dropped 1 m onto a bed of 80 bricks of 250 kg, two layers, 3 cm apart
+// along x and 2 cm along z (a ratio of 80).
+struct BallOnBed {
+  uint32_t ball = 0;
+  std::vector<uint32_t> bricks;
+};
+
+BallOnBed dropBallOnBed(World& w) {
+  BallOnBed s;
+  addGround(w);
+  for (int i = 0; i < 5; ++i)
+    for (int layer = 0; layer < 2; ++layer)
+      for (int k = 0; k < 8; ++k)
+        s.bricks.push_back(addBox(w, Vec3(-2.06f + 1.03f * float(i), 0.25f + 0.51f * float(layer), -1.82f + 0.52f * float(k)),
+                                  Vec3(0.5f, 0.25f, 0.25f), 250.0f));
+  BodyDef d;
+  d.shape = Shape::sphere(1.2f);
+  d.xf.p = Vec3(0.3f, 3.2f, 0.2f);
+  d.mass = 20000.0f;
+  d.friction = 0.4f;
+  d.restitution = 0.1f;
+  s.ball = w.addBody(d);
+  return s;
+}
+
+WorldSettings fixedCount(int iterations, int threads = 2) {
+  WorldSettings ws;
+  ws.splitApartContacts = true;
+  ws.iterations = iterations;
+  ws.threads = threads;
+  ws.sleeping = false;  // the bed must hold the ball awake, not by sleeping
+  return ws;
+}
+
+TEST(ApartContacts, AHeavyBallLandingOnABedOfLightBricksComesToRest) {
+  for (int iterations : {4, 10}) {
+    World w(fixedCount(iterations));
+    const BallOnBed s = dropBallOnBed(w);
+    for (int step = 0; step < 120; ++step) w.step();  // lands at step ~27, bounces 1 cm once
+    const Vec3 landed = w.bodies().xf[s.ball].p;
+    float ballSpeed = 0.0f, brickSpeed = 0.0f, upward = 0.0f;
+    for (int step = 0; step < 600; ++step) {
+      w.step();
+      ballSpeed = std::max(ballSpeed, w.bodies().v[s.ball].norm());
+      upward = std::max(upward, w.bodies().v[s.ball].y());
+      for (uint32_t b : s.bricks) brickSpeed = std::max(brickSpeed, w.bodies().v[b].norm());
+    }
+    const Vec3 end = w.bodies().xf[s.ball].p;
+    // Unsplit: it bounces on its push-out (0.2-0.8 m/s), drags the bricks (0.7 m/s) and rolls off.
+    EXPECT_LT(ballSpeed, 0.01f) << iterations << " iterations";
+    EXPECT_LT(upward, 0.01f) << iterations << " iterations";
+    EXPECT_LT(brickSpeed, 0.01f) << iterations << " iterations";
+    EXPECT_LT((end - landed).norm(), 0.005f) << iterations << " iterations";
+    // Resting on the top layer (its top at 1.01 m), not sunk into it.
+    EXPECT_NEAR(end.y(), 1.01f + 1.2f, 0.015f) << iterations << " iterations";
+  }
+}
+
+TEST(ApartContacts, SameStateForAnyThreadCount) {
+  test::expectSameStateForThreadCounts([](int threads) {
+    World w(fixedCount(10, threads));
+    dropBallOnBed(w);
+    for (int s = 0; s < 120; ++s) w.step();
+    return w.stateHash();
+  });
+}
+
+}  // namespace
+}  // namespace haif
