@@ -49,30 +49,7 @@ TEST(ApartContacts, BodiesTooFarApartToTouchThisStepAreSeparateIslands) {
   EXPECT_TRUE(shareAnIsland(0.015f, 0.0f, false));
 }
 
-// A 20 t iron ball (r 1.2 m) dropped 1 m onto a bed of 80 bricks of 250 kg, two layers, 3 cm apart
-// along x and 2 cm along z (a ratio of 80).
-struct BallOnBed {
-  uint32_t ball = 0;
-  std::vector<uint32_t> bricks;
-};
-
-BallOnBed dropBallOnBed(World& w) {
-  BallOnBed s;
-  addGround(w);
-  for (int i = 0; i < 5; ++i)
-    for (int layer = 0; layer < 2; ++layer)
-      for (int k = 0; k < 8; ++k)
-        s.bricks.push_back(addBox(w, Vec3(-2.06f + 1.03f * float(i), 0.25f + 0.51f * float(layer), -1.82f + 0.52f * float(k)),
-                                  Vec3(0.5f, 0.25f, 0.25f), 250.0f));
-  BodyDef d;
-  d.shape = Shape::sphere(1.2f);
-  d.xf.p = Vec3(0.3f, 3.2f, 0.2f);
-  d.mass = 20000.0f;
-  d.friction = 0.4f;
-  d.restitution = 0.1f;
-  s.ball = w.addBody(d);
-  return s;
-}
+// The 20 t ball dropped 1 m onto the bed of 250 kg bricks (test::addBallOnBrickBed).
 
 WorldSettings fixedCount(int iterations, int threads = 2) {
   WorldSettings ws;
@@ -86,7 +63,7 @@ WorldSettings fixedCount(int iterations, int threads = 2) {
 TEST(ApartContacts, AHeavyBallLandingOnABedOfLightBricksComesToRest) {
   for (int iterations : {4, 10}) {
     World w(fixedCount(iterations));
-    const BallOnBed s = dropBallOnBed(w);
+    const test::BallOnBrickBed s = test::addBallOnBrickBed(w);
     for (int step = 0; step < 120; ++step) w.step();  // lands at step ~27, bounces 1 cm once
     const Vec3 landed = w.bodies().xf[s.ball].p;
     float ballSpeed = 0.0f, brickSpeed = 0.0f, upward = 0.0f;
@@ -110,7 +87,7 @@ TEST(ApartContacts, AHeavyBallLandingOnABedOfLightBricksComesToRest) {
 TEST(ApartContacts, SameStateForAnyThreadCount) {
   test::expectSameStateForThreadCounts([](int threads) {
     World w(fixedCount(10, threads));
-    dropBallOnBed(w);
+    test::addBallOnBrickBed(w);
     for (int s = 0; s < 120; ++s) w.step();
     return w.stateHash();
   });

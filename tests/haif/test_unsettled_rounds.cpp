@@ -11,27 +11,9 @@
 namespace haif {
 namespace {
 
-using test::addBox;
-using test::addGround;
-
-// A 20 t iron ball (r 1.2 m) rolled at 0.3 m/s onto a bed of 250 kg bricks two layers deep, 3 cm
-// apart: the islands of the ball and the bricks under it are solved together (a ratio of 80).
-uint32_t addBallOnBed(World& w) {
-  addGround(w);
-  for (int i = 0; i < 5; ++i)
-    for (int layer = 0; layer < 2; ++layer)
-      for (int k = 0; k < 8; ++k)
-        addBox(w, Vec3(-2.06f + 1.03f * float(i), 0.25f + 0.51f * float(layer), -1.82f + 0.52f * float(k)),
-               Vec3(0.5f, 0.25f, 0.25f), 250.0f);
-  BodyDef d;
-  d.shape = Shape::sphere(1.2f);
-  d.xf.p = Vec3(0.3f, 3.2f, 0.2f);
-  d.linearVelocity = Vec3(0.3f, 0.0f, 0.0f);
-  d.mass = 20000.0f;
-  d.friction = 0.4f;
-  d.restitution = 0.1f;
-  return w.addBody(d);
-}
+// The ball rolled at 0.3 m/s onto the bed (test::addBallOnBrickBed): the islands of the ball and the
+// bricks under it are solved together (a ratio of 80).
+uint32_t addBallOnBed(World& w) { return test::addBallOnBrickBed(w, Vec3(0.3f, 0.0f, 0.0f)).ball; }
 
 WorldSettings settingsFor(int threads) {
   WorldSettings ws;
