@@ -216,18 +216,18 @@ void World::narrowPhase() {
   // at its own speed: the solve may stop either one (a layer landing on the one below, both falling,
   // closes at the upper one's speed). Such a contact holds nothing this step, so it joins no
   // islands (IslandBuilder).
-  auto apartThisStep = [&](const Contact& c, const ContactEdge& edge) {
+  auto apartThisStep = [&](uint32_t ci, const Contact& c) {
     if (!settings_.splitApartContacts || c.hovering) return false;  // hovering within the skin: touching
     if (!bodies_.isDynamic(c.a) || !bodies_.isDynamic(c.b)) return false;  // joins nothing either way
     const float closes = (bodies_.v[c.a].norm() + bodies_.v[c.b].norm() + spinReach(c.a) + spinReach(c.b)) * settings_.dt;
-    return -edge.nearest > contactReach(settings_.contact.slop, c.toleranceScale, fallStep) + closes;
+    return outOfReach(ci, fallStep + closes);  // reads the edge noteEdge has just written
   };
   // Every pair ends here: its edge written, and the removal test made (two tree nodes a pair: here,
   // in parallel, not in the serial pass).
   auto finish = [&](uint32_t ci, const Contact& c, ContactEdge& edge, bool againstImmovable, float apart,
                     bool fresh = false) {
     noteEdge(c, edge, apart, fresh);
-    edge.apart = apartThisStep(c, edge);
+    edge.apart = apartThisStep(ci, c);
     edge.pressedByImmovable = againstImmovable && (edge.overlapping || closesPastItsGap(c));
     if (edge.count == 0 && !broadPhase_.fatOverlap(edge.a, edge.b)) collision_.pairFlags[ci] |= kPairApart;
   };
