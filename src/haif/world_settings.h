@@ -65,9 +65,10 @@ struct WorldSettings {
   /// within the step (ContactEdge::apart) joins no two bodies into one island: a bed of bricks laid
   /// 2-3 cm apart is then many islands, and a heavy ball landing on it an island of the few bricks
   /// under it, solved together (a 20 t ball on 250 kg bricks comes to rest instead of bouncing and
-  /// rolling off). Off by default: a landing solved so can leave the island larger than 64 contacts
-  /// the next step, swept from the landing's impulses, and at fixed 4 that threw a ball up at
-  /// 9.6 m/s (docs/solver.md, Known limits: "A heavy ball among light bricks").
+  /// rolling off). Off by default: the landing, solved so, still kicks a light brick sideways
+  /// (1-3.5 m/s, its relax sweep's normal impulse on a tilted edge normal, with no friction after
+  /// it), and its cost under a frame budget is not yet measured (docs/solver.md, "Contacts that
+  /// cannot touch this step").
   bool splitApartContacts = false;
   bool reuseManifolds = true;       ///< keep a pair's manifold while its bodies keep still (manifold_cache.h)
   JointSolverParams joints;         ///< how joints are solved (dynamics/joint_solver.h)

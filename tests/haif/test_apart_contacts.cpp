@@ -84,13 +84,40 @@ TEST(ApartContacts, AHeavyBallLandingOnABedOfLightBricksComesToRest) {
   }
 }
 
+// Thrown at 0.5 m/s onto three layers, the ball lands over a gap: solved together, the landing puts
+// ~100 kN s on one brick's edge. The next step its island has grown past what is solved together
+// (86 contacts) and is swept: warm-started from the landing's impulses, the sweeps threw the ball up
+// at 8-9 m/s and the bricks at 7-10 m/s (World::solveIslands now forgets them).
+TEST(ApartContacts, ALandingSolvedTogetherIsNoWarmStartForSweeps) {
+  for (int iterations : {4, 10}) {
+    World w(fixedCount(iterations));
+    const test::BallOnBrickBed s = test::addBallOnBrickBed(w, Vec3(0.5f, 0.0f, 0.0f), 3);
+    float ballSpeed = 0.0f, upward = 0.0f, brickSpeed = 0.0f;
+    for (int step = 0; step < 240; ++step) {  // lands at step 26; rolls off the bed's edge after ~350
+      w.step();
+      for (uint32_t b : s.bricks) brickSpeed = std::max(brickSpeed, w.bodies().v[b].norm());
+      if (step <= 30) continue;  // falling 4.4 m/s onto the bed, then its bounce
+      ballSpeed = std::max(ballSpeed, w.bodies().v[s.ball].norm());
+      upward = std::max(upward, w.bodies().v[s.ball].y());
+    }
+    // Measured: ball 0.85 / 1.67 m/s, up 0.69 / 1.23 m/s, bricks 3.5 / 2.0 m/s at 4 / 10 iterations
+    // (docs/solver.md, Known limits: the bricks' rocking under the rolling ball is left).
+    EXPECT_LT(ballSpeed, 2.5f) << iterations << " iterations";
+    EXPECT_LT(upward, 2.0f) << iterations << " iterations";
+    EXPECT_LT(brickSpeed, 5.0f) << iterations << " iterations";
+  }
+}
+
 TEST(ApartContacts, SameStateForAnyThreadCount) {
-  test::expectSameStateForThreadCounts([](int threads) {
-    World w(fixedCount(10, threads));
-    test::addBallOnBrickBed(w);
-    for (int s = 0; s < 120; ++s) w.step();
-    return w.stateHash();
-  });
+  // Dropped onto two layers (split islands), and thrown onto three (a landing forgotten, above).
+  for (int layers : {2, 3}) {
+    test::expectSameStateForThreadCounts([layers](int threads) {
+      World w(fixedCount(10, threads));
+      test::addBallOnBrickBed(w, Vec3(layers == 2 ? 0.0f : 0.5f, 0.0f, 0.0f), layers);
+      for (int s = 0; s < 120; ++s) w.step();
+      return w.stateHash();
+    });
+  }
 }
 
 }  // namespace

@@ -30,12 +30,15 @@ TEST(UnsettledRounds, AnIslandWhoseRoundsDoNotSettleStopsFactoringItsSystem) {
   const uint32_t ball = addBallOnBed(w);
   const float onBed = 1.01f + 1.2f;  // the bed's top plus the radius
   uint32_t mostFactors = 0;          // most factorisations in one step
+  uint32_t mostFactorsUnsettled = 0;  // ... in a step with a sweep whose rounds did not settle
   uint32_t mostUnsettled = 0;        // most sweeps of one island in a step whose rounds did not settle
   uint32_t stepsUnsettled = 0;       // steps with such a sweep
   float deepest = 0.0f;              // how far the ball's centre went below onBed (m)
   for (int s = 0; s < 600; ++s) {
     w.step();
     mostFactors = std::max(mostFactors, w.lastStats().exactFactors);
+    if (w.lastStats().mostUnsettledSweeps > 0)
+      mostFactorsUnsettled = std::max(mostFactorsUnsettled, w.lastStats().exactFactors);
     mostUnsettled = std::max(mostUnsettled, w.lastStats().mostUnsettledSweeps);
     stepsUnsettled += w.lastStats().mostUnsettledSweeps > 0 ? 1u : 0u;
     deepest = std::max(deepest, onBed - w.bodies().xf[ball].p.y());
@@ -43,7 +46,10 @@ TEST(UnsettledRounds, AnIslandWhoseRoundsDoNotSettleStopsFactoringItsSystem) {
   EXPECT_GT(mostFactors, 0u);     // the bed is solved together
   EXPECT_GT(stepsUnsettled, 0u);  // and its rounds do not always settle
   EXPECT_LE(mostUnsettled, 2u);   // two such sweeps, then the island is swept for the step
-  EXPECT_LE(mostFactors, 40u);    // two sweeps' rounds for an island, and a few small islands
+  // Two sweeps' rounds for the island, and a few small islands. Only in such steps: an island whose
+  // rounds settle may factor its system a few times every sweep (the ball rolling over the bed, 26
+  // contacts: up to 65 factorisations, 0.9 ms, in a step where every sweep settled).
+  EXPECT_LE(mostFactorsUnsettled, 40u);
   // The bed holds the ball (the bricks do not come to rest under it: docs/solver.md, Known limits).
   EXPECT_LT(deepest, 0.1f);
 }

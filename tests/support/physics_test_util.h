@@ -94,24 +94,25 @@ inline std::vector<uint32_t> addColumn(World& w, int count, float x = 0.0f, floa
   return ids;
 }
 
-/// A 20 t iron ball (r 1.2 m, friction 0.4, restitution 0.1) 1 m above a bed of 80 bricks of
-/// 250 kg (1 × 0.5 × 0.5 m), 5 × 8 in two layers, 3 cm apart along x, 2 cm along z, 1 cm between
-/// the layers, on the ground: a heavy body among light ones (a ratio of 80), as in tower_collapse.
+/// A 20 t iron ball (r 1.2 m, friction 0.4, restitution 0.1) 1 m above a bed of bricks of 250 kg
+/// (1 × 0.5 × 0.5 m), 5 × 8 in `layers` layers (80 bricks in two), 3 cm apart along x, 2 cm along
+/// z, 1 cm between the layers, on the ground: a heavy body among light ones (a ratio of 80), as in
+/// tower_collapse.
 struct BallOnBrickBed {
   uint32_t ball = 0;
   std::vector<uint32_t> bricks;
 };
-inline BallOnBrickBed addBallOnBrickBed(World& w, const Vec3& ballVelocity = Vec3::Zero()) {
+inline BallOnBrickBed addBallOnBrickBed(World& w, const Vec3& ballVelocity = Vec3::Zero(), int layers = 2) {
   BallOnBrickBed s;
   addGround(w);
   for (int i = 0; i < 5; ++i)
-    for (int layer = 0; layer < 2; ++layer)
+    for (int layer = 0; layer < layers; ++layer)
       for (int k = 0; k < 8; ++k)
         s.bricks.push_back(addBox(w, Vec3(-2.06f + 1.03f * float(i), 0.25f + 0.51f * float(layer), -1.82f + 0.52f * float(k)),
                                   Vec3(0.5f, 0.25f, 0.25f), 250.0f));
   BodyDef d;
   d.shape = Shape::sphere(1.2f);
-  d.xf.p = Vec3(0.3f, 3.2f, 0.2f);
+  d.xf.p = Vec3(0.3f, 0.51f * float(layers) + 2.18f, 0.2f);  // 1 m above the top layer
   d.linearVelocity = ballVelocity;
   d.mass = 20000.0f;
   d.friction = 0.4f;
