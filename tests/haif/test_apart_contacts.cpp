@@ -101,7 +101,7 @@ TEST(ApartContacts, ALandingSolvedTogetherIsNoWarmStartForSweeps) {
       upward = std::max(upward, w.bodies().v[s.ball].y());
     }
     // Measured: ball 0.85 / 1.67 m/s, up 0.69 / 1.23 m/s, bricks 3.5 / 2.0 m/s at 4 / 10 iterations
-    // (docs/solver.md, Known limits: the bricks' rocking under the rolling ball is left).
+    // (docs/solver.md, "A landing solved together is no warm start for sweeps": what is left).
     EXPECT_LT(ballSpeed, 2.5f) << iterations << " iterations";
     EXPECT_LT(upward, 2.0f) << iterations << " iterations";
     EXPECT_LT(brickSpeed, 5.0f) << iterations << " iterations";
