@@ -4,7 +4,8 @@
 
 namespace haif {
 
-int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned mask, double B[kMaxManifoldPoints][3]) {
+int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned mask, double single,
+               double B[kMaxManifoldPoints][3]) {
   // The span of [1, s, t] does not depend on where (s, t) are measured from, but the rank test does:
   // it takes the spread about the points' mean (the coordinates of a whole manifold already are).
   const unsigned all = (1u << count) - 1u;
@@ -37,9 +38,9 @@ int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned m
     cst += s * t;
   }
   const double spread = css + ctt;
-  const bool single = m < 2 || !(spread > 1e-12);  // all points in one place
-  const bool collinear = !single && css * ctt - cst * cst <= 1e-4 * spread * spread;
-  const int k = single ? 1 : m >= 3 && !collinear ? 3 : 2;
+  const bool onePlace = m < 2 || !(spread > single);
+  const bool collinear = !onePlace && css * ctt - cst * cst <= 1e-4 * spread * spread;
+  const int k = onePlace ? 1 : m >= 3 && !collinear ? 3 : 2;
   if (k == 2 && ctt > css)
     for (int i = 0; i < count; ++i) B[i][1] = B[i][2];
   for (int i = 0; i < count; ++i)

@@ -39,7 +39,7 @@ static_assert(3 * DenseNormalSystem::kMaxLinks <= DenseNormalSystem::kMaxRows,
 // The virtual rows of a link over its points in link.points, and their diagonal block.
 void buildRows(const ContactConstraint& c, ChainLink& link) {
   double B[kMaxManifoldPoints][3];
-  link.rank = pointBasis(link.coords, c.count, link.points, B);
+  link.rank = pointBasis(link.coords, c.count, link.points, singlePlaceSpread(c), B);
   const double mSum = double(c.invMassA) + double(c.invMassB);
   for (int r = 0; r < 3; ++r) {
     double lin = 0.0;

@@ -102,7 +102,7 @@ bool prepareBlockInverse(F4 s, F4 t, ContactConstraint& cc) {
   const double css = (ss[0] + ss[1]) + (ss[2] + ss[3]), ctt = (tt[0] + tt[1]) + (tt[2] + tt[3]);
   const double cst = (st[0] + st[1]) + (st[2] + st[3]);
   const double spread = css + ctt;
-  if (!(spread > 1e-12)) return false;  // rank 1: all points in one place
+  if (!(spread > singlePlaceSpread(cc))) return false;  // rank 1: all points in one place
   float K[kMaxManifoldPoints][kMaxManifoldPoints];
   normalCoupling(cc, K);
   auto& G = cc.blockInverse;

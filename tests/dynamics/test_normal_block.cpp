@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace haif {
@@ -140,6 +141,60 @@ TEST(NormalBlock, PlaneBlockIsThePseudoInverseOfTheCouplingOnItsRange) {
   EXPECT_LT((G * K * G - G).norm(), 1e-4 * G.norm());
   const Eigen::Vector4d b = K * Eigen::Vector4d(1.0, -2.0, 0.5, 3.0);
   EXPECT_LT((K * (G * b) - b).norm(), 1e-4 * b.norm());
+}
+
+// Two 250 kg bricks (1 x 0.5 x 0.5 m) of a resting bed, diagonal neighbours in adjacent layers whose
+// faces 2 cm apart overlap in a sliver 0.3 x 0.1 mm at a corner: the narrow phase's four points of
+// that speculative contact, as a minute run of a 20 t ball on a three-layer bed made them (step 629).
+struct BrickSliver {
+  BodyStore bodies;
+  Contact contact;
+  explicit BrickSliver(float across) {
+    const float m = 250.0f;
+    const Vec3 h(0.5f, 0.25f, 0.25f);
+    const Mat3 inertia = Vec3(m / 3.0f * (h.y() * h.y() + h.z() * h.z()), m / 3.0f * (h.x() * h.x() + h.z() * h.z()),
+                              m / 3.0f * (h.x() * h.x() + h.y() * h.y()))
+                             .asDiagonal();
+    Transform a, b;
+    a.p = Vec3(-2.06f, 0.74995f, 0.78f);
+    b.p = Vec3(-1.06024826f, 1.24902797f, 0.260529935f);
+    b.q = Quat(0.999999702f, 2.65423641e-05f, -0.000324512104f, -0.000722464581f);
+    bodies.add(BodyKind::Dynamic, a, m, inertia);
+    bodies.add(BodyKind::Dynamic, b, m, inertia);
+    contact.a = 0;
+    contact.b = 1;
+    // A rectangle `across` wide in x and a quarter of that in y, at the corner of the overlap.
+    const Vec3 corner(-1.56055f, 0.99989f, 0.5201f);
+    const Vec3 offsets[4] = {{0.0f, 0.0f, 0.0f}, {0.0f, -0.25f * across, 0.0f}, {across, -0.25f * across, 0.0f}, {across, 0.0f, 0.0f}};
+    contact.manifold.count = 4;
+    for (int i = 0; i < 4; ++i) {
+      ContactPoint& p = contact.manifold.points[i];
+      p.position = corner + offsets[i];
+      p.normal = -Vec3::UnitZ();
+      p.depth = -0.0198f;
+      p.id = uint32_t(i);
+    }
+  }
+};
+
+// The block's inverse reads how the coupling K varies across the points, by ~|I⁻¹| times their
+// spread; float holds K to ~1e-7 of its size. Across 0.33 mm on 1 m bricks that variation is
+// rounding, and the inverse came out at 7.6e12 (a row's mass is 25): velocity rounding of 1e-7 m/s
+// made impulses of 1e6 N s, and whenever they happened to be all pushing they were kept: the
+// bed's 119 bricks, at rest, left at 24 m/s in one step. Such a sliver is one place; a patch of
+// a few centimetres on the same bricks keeps its exact block.
+TEST(NormalBlock, APatchTooSmallForFloatToReadIsOnePlace) {
+  BrickSliver sliver(0.00033f);
+  ContactConstraint c;
+  prepareContact(sliver.bodies, sliver.contact, 0, params(), c);
+  EXPECT_FALSE(c.blockExact) << "a 0.33 mm patch on 1 m bricks solved as a block";
+  BrickSliver patch(0.03f);
+  prepareContact(patch.bodies, patch.contact, 0, params(), c);
+  ASSERT_TRUE(c.blockExact) << "a 3 cm patch lost its exact block";
+  float largest = 0.0f;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) largest = std::max(largest, std::fabs(c.blockInverse[i][j]));
+  EXPECT_LT(largest, 1e5f) << "the 3 cm patch's inverse reads rounding too";
 }
 
 }  // namespace
