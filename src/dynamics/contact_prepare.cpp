@@ -162,6 +162,29 @@ F4 turningLead(const BodyStore& bodies, const ContactConstraint& cc, const Vec3&
   return F4{};
 }
 
+// A turning body's material point at r from its centre moves on an arc over the step, while the
+// solve's rows and the centre's move are straight: the point ends (R(ω dt) - I) r - (ω×r) dt away
+// from where its velocity says, this over dt (the Cayley turn of the integrator, t = |ω| dt / 2):
+//   e = (½ dt ω×(ω×r) - t² ω×r) / (1 + t²),
+// the pull towards the centre that holds a point on its circle.
+Vec3 arcLag(const Vec3& w, const Vec3& r, float dt) {
+  const float t2 = 0.25f * dt * dt * w.squaredNorm();
+  const Vec3 wr = w.cross(r);
+  return (0.5f * dt * w.cross(wr) - t2 * wr) / (1.0f + t2);
+}
+
+// The lag of a's contact point on b's (arcLag), where the pair turns as one: a box riding a turntable,
+// a stack on it. Pairs that turn against each other (a ball rolling, a body tumbling onto another)
+// keep no material point in contact, and get none.
+constexpr float kArcLagFloor = 1e-8f;  // (|ω| dt / 2)² below which nothing turns (0.012 rad/s at 60 Hz)
+constexpr float kCoTurning = 0.1f;     // most relative turning, as a fraction of the faster body's
+Vec3 pairArcLag(const Vec3& wA, const Vec3& wB, const Vec3& rA, const Vec3& rB, float dt) {
+  const float most = std::max(wA.squaredNorm(), wB.squaredNorm());
+  if (0.25f * dt * dt * most < kArcLagFloor || (wB - wA).squaredNorm() > kCoTurning * kCoTurning * most)
+    return Vec3::Zero();
+  return arcLag(wB, rB, dt) - arcLag(wA, rA, dt);
+}
+
 // Below this relative speed (rad/s of turning, m/s of sliding) a pair is not rolling that way.
 constexpr float kRollingAtRest = 1e-6f;
 // Shortest vector that still gives a direction (a held impulse may be small).
@@ -308,6 +331,18 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
     anchorBias[0] = pull(drift.dot(t1));
     anchorBias[1] = pull(drift.dot(t2));
   }
+  // A sticking pair moves its two material points apart over the step where either body turns: its
+  // velocities match, but the points' arcs do not follow them (arcLag). A box riding a turntable at
+  // 1 rad/s, 3 m out, slid outwards at 0.025 m/s and off the edge within a minute. Every sweep aims
+  // the friction at the points' chords instead, so positions follow the arcs. The relax sweeps keep
+  // the aim too (lanes 2 and 3): what they took away the main sweeps had to pass up a stack again
+  // every step, and a stack's upper boxes slid out at a fifth of the rate.
+  const Vec3 lag = p.followArcs ? pairArcLag(wA, wB, rA, rB, p.dt) : Vec3::Zero();
+  const float lag1 = lag.dot(t1), lag2 = lag.dot(t2);
+  anchorBias[0] += lag1;
+  anchorBias[1] += lag2;
+  anchorBias[2] = lag1;
+  anchorBias[3] = lag2;
   store(cc.frictionBias, anchorBias);
   const F4 tx{t1.x(), t2.x(), 0.0f, 0.0f}, ty{t1.y(), t2.y(), 0.0f, 0.0f}, tz{t1.z(), t2.z(), 0.0f, 0.0f};
   // Angular parts: r × t for the tangent rows, the normal itself for the twist.

@@ -209,7 +209,8 @@ template <bool Rolling>
   // Both tangent rows together (lanes 0 and 1), at their velocities after the twist's impulse,
   // clamped to the friction circle |λt| <= μ λn: clamping each axis alone (a box) lets friction
   // reach √2 μ λn and pushes a sliding body sideways.
-  const F4 vt = vf + tc * twistApplied + (useBias ? load(c.frictionBias) : F4{});
+  const F4 bias = load(c.frictionBias);
+  const F4 vt = vf + tc * twistApplied + (useBias ? bias : __builtin_shuffle(bias, simd4::I4{2, 3, 2, 3}));
   const F4 m = load(&c.tangentMass[0][0]);  // m00, m01, m10, m11
   const F4 tangent = old - omega * (__builtin_shuffle(m, simd4::I4{0, 2, 0, 2}) * splat<0>(vt) +
                                     __builtin_shuffle(m, simd4::I4{1, 3, 1, 3}) * splat<1>(vt));

@@ -58,6 +58,9 @@ struct SolverParams {
   /// Some body has a rolling resistance (the World sets it): rolling rows are built where a contact
   /// has a lever (Contact::rollingLever). Off, no contact's rolling fields are read or written.
   bool rolling = false;
+  /// Friction holds a sticking pair's material points together along their arcs where a body turns,
+  /// not only their velocities (arcLag, contact_prepare.cpp): off, what rides a turntable slides out.
+  bool followArcs = true;
 };
 
 static_assert(kMaxManifoldPoints == 4, "the normal rows of a manifold are one 4-wide vector");
@@ -124,7 +127,8 @@ struct alignas(16) ContactConstraint {
   float twistMass;                  // 1 / (n (I_A^-1 + I_B^-1) n)
   float twistRadius;                // lever (m) turning the friction limit into a twist limit
   alignas(16) float frictionImpulse[4];  // tangent 1, tangent 2, twist, rolling
-  // b of the tangent rows in a main sweep: the anchors' drift pulled back (m/s); twist and lane 3 zero.
+  // b of the tangent rows (m/s): lanes 0 and 1 in a main sweep (the anchors' drift pulled back and
+  // the points' arcs followed), lanes 2 and 3 in a relax sweep (the arcs alone; contact_prepare.cpp).
   alignas(16) float frictionBias[4];
 
   Vec3 tangent1() const { return frictionLinear.row(0); }

@@ -201,6 +201,8 @@ void packWide(const ContactConstraint* cs, int lanes, WideContactBatch& w) {
     w.twistRadius[l] = c.twistRadius;
     w.tangentBias1[l] = c.frictionBias[0];
     w.tangentBias2[l] = c.frictionBias[1];
+    w.tangentLead1[l] = c.frictionBias[2];
+    w.tangentLead2[l] = c.frictionBias[3];
     w.tangentImpulse1[l] = c.frictionImpulse[0];
     w.tangentImpulse2[l] = c.frictionImpulse[1];
     w.twistImpulse[l] = c.frictionImpulse[2];
@@ -267,10 +269,8 @@ SweepResult solveWide(BodyStore& bodies, WideContactBatch& w, float omega, bool 
     const V3 dv = vb - va;
     F8 vt1 = dot(w.tangent1, dv) + dot(w.rBxt1, wb) - dot(w.rAxt1, wa);
     F8 vt2 = dot(w.tangent2, dv) + dot(w.rBxt2, wb) - dot(w.rAxt2, wa);
-    if (useBias) {
-      vt1 += w.tangentBias1;
-      vt2 += w.tangentBias2;
-    }
+    vt1 += useBias ? w.tangentBias1 : w.tangentLead1;
+    vt2 += useBias ? w.tangentBias2 : w.tangentLead2;
     const F8 old1 = w.tangentImpulse1, old2 = w.tangentImpulse2;
     F8 n1 = old1 - om * (w.tangentMass00 * vt1 + w.tangentMass01 * vt2);
     F8 n2 = old2 - om * (w.tangentMass10 * vt1 + w.tangentMass11 * vt2);

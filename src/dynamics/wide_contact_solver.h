@@ -54,7 +54,8 @@ struct alignas(32) WideContactBatch {
   V3 tangent1, tangent2, twistAxis, rAxt1, rBxt1, rAxt2, rBxt2, iAt1, iBt1, iAt2, iBt2, iAtw, iBtw;
   F8 tangentMass00, tangentMass01, tangentMass10, tangentMass11, twistMass, twistRadius;
   F8 tangentImpulse1, tangentImpulse2, twistImpulse;
-  F8 tangentBias1, tangentBias2;  // ContactConstraint::frictionBias: the anchors' drift pulled back
+  F8 tangentBias1, tangentBias2;  // ContactConstraint::frictionBias, main sweeps (lanes 0, 1)
+  F8 tangentLead1, tangentLead2;  // ContactConstraint::frictionBias, relax sweeps (lanes 2, 3)
   F8 delta[ContactConstraint::kRows], direction[ContactConstraint::kRows];
 };
 

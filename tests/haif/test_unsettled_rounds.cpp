@@ -11,9 +11,12 @@
 namespace haif {
 namespace {
 
-// The ball rolled at 0.3 m/s onto the bed (test::addBallOnBrickBed): the islands of the ball and the
-// bricks under it are solved together (a ratio of 80).
-uint32_t addBallOnBed(World& w) { return test::addBallOnBrickBed(w, Vec3(0.3f, 0.0f, 0.0f)).ball; }
+// The ball rolled at 0.35 m/s onto the bed (test::addBallOnBrickBed): the islands of the ball and the
+// bricks under it are solved together (a ratio of 80). Which rolls leave rounds unsettled is chaos:
+// since friction follows the arcs of pairs that turn together (session 57) the roll at 0.3 m/s
+// (used before) no longer had its island solved together, and at 0.35 the bed holds the ball where
+// before it rolled off the bed's edge.
+uint32_t addBallOnBed(World& w) { return test::addBallOnBrickBed(w, Vec3(0.35f, 0.0f, 0.0f)).ball; }
 
 WorldSettings settingsFor(int threads) {
   WorldSettings ws;
