@@ -226,6 +226,15 @@ uint32_t jointRowCount(const JointDef& d) {
   }
 }
 
+float motorAim(const JointDef& d, float position, float time, float dt) {
+  if (d.servo.empty()) return d.motorSpeed;
+  // Aim at the trajectory: its speed plus the position error closed in servoTime.
+  float target, slope;
+  servoTarget(d, time - dt, target, slope);
+  const float err = d.type == JointType::Hinge ? wrapAngle(target - position) : target - position;
+  return slope + err / std::max(d.servoTime, dt);
+}
+
 float jointPosition(const BodyStore& bodies, const JointDef& d) {
   const JointGeometry g = geometryOf(bodies, d);
   if (d.type == JointType::Hinge) return hingeAngle(g);
@@ -491,15 +500,8 @@ void prepareRows(const BodyStore& bodies, const Joint& j, const JointGeometry& g
     const float bias = c > 0.0f ? c * invDt : beta * c;
     addRow(row, slot, bias, c > 0.0f ? c * invDt : 0.0f, 0.0f, kInf);
   };
-  auto addMotor = [&](const JointRow& row, float position, bool angle) {
-    float speed = d.motorSpeed;
-    if (!d.servo.empty()) {
-      // Aim at the trajectory: its speed plus the position error closed in servoTime.
-      float target, slope;
-      servoTarget(d, time - p.dt, target, slope);
-      const float err = angle ? wrapAngle(target - position) : target - position;
-      speed = slope + err / std::max(d.servoTime, p.dt);
-    }
+  auto addMotor = [&](const JointRow& row, float position) {
+    const float speed = motorAim(d, position, time, p.dt);
     const float maxImpulse = d.maxMotorForce * p.dt;
     addRow(row, 0, -speed, -speed, -maxImpulse, maxImpulse);
     jc.motor = true;
@@ -508,7 +510,7 @@ void prepareRows(const BodyStore& bodies, const Joint& j, const JointGeometry& g
     case JointType::Hinge: {
       const JointRow row = rb.angular(g.axisA);
       const float angle = hingeAngle(g);
-      if (d.motorEnabled) addMotor(row, angle, true);
+      if (d.motorEnabled) addMotor(row, angle);
       if (d.limitEnabled) {
         addLimit(row, 1, angle - d.lower);
         addLimit(rb.negated(row), 2, d.upper - angle);
@@ -518,7 +520,7 @@ void prepareRows(const BodyStore& bodies, const Joint& j, const JointGeometry& g
     case JointType::Slider: {
       const JointRow row = rb.linear(g.axisA, g.rA + sep, g.rB);
       const float s = g.axisA.dot(sep);
-      if (d.motorEnabled) addMotor(row, s, false);
+      if (d.motorEnabled) addMotor(row, s);
       if (d.limitEnabled) {
         addLimit(row, 1, s - d.lower);
         addLimit(rb.negated(row), 2, d.upper - s);

@@ -172,4 +172,9 @@ JointError measureJointError(const BodyStore& bodies, const Joint& j);
 /// Current relative position of a hinge (angle about the axis, rad) or slider (translation, m).
 float jointPosition(const BodyStore& bodies, const JointDef& d);
 
+/// The relative speed (rad/s or m/s) a hinge's or slider's motor drives at in the step ending at
+/// simulated time `time`, from the joint's `position` (jointPosition) at its start: the motor's
+/// speed, or a servo's trajectory slope plus its position error closed in servoTime.
+float motorAim(const JointDef& d, float position, float time, float dt);
+
 }  // namespace haif

@@ -44,9 +44,17 @@ void SpeedBound::update(const BodyStore& bodies, const Vec3& gravity, float dt, 
   const float lowest = std::isfinite(floor) ? std::max(lowest_, floor) : lowest_;
   const float fall = std::max(0.0f, highestStart_ - lowest);
   const float freeFall = std::sqrt(2.0f * g * (1.0f + waterLift) * fall);
-  limit_ = settings.factor > 0.0f
-               ? settings.factor * (fastestStart_ + freeFall + 2.0f * kinematic + forceAllowance_) + settings.floor
-               : 1e30f;
+  base_ = fastestStart_ + freeFall + 2.0f * kinematic + forceAllowance_;
+  setLimit();
+}
+
+void SpeedBound::setMotorSurface(float speed) {
+  motorSurface_ = speed;
+  setLimit();
+}
+
+void SpeedBound::setLimit() {
+  limit_ = settings.factor > 0.0f ? settings.factor * (base_ + 2.0f * motorSurface_) + settings.floor : 1e30f;
 }
 
 uint32_t SpeedBound::apply(BodyStore& bodies, uint32_t begin, uint32_t end) const {

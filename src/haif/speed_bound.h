@@ -4,11 +4,16 @@
 // joints that cannot all hold, has no solution the sweeps can find: its impulses grow from sweep to
 // sweep and from step to step (warm starting carries them), and the body leaves at whatever speed
 // the last one gave it (a sweeper in a pit threw a body out at 1184 m/s). Energy in a scene comes
-// only from the bodies' start speeds, their fall, kinematic surfaces, user forces and water, so
+// only from the bodies' start speeds, their fall, kinematic surfaces, joint motors, user forces and
+// water, so
 //   V = factor (fastest start + free fall from the highest start to the lowest body now
-//               + 2 × fastest kinematic surface + Σ user-force impulse per mass) + floor
+//               + 2 × (fastest kinematic surface + fastest motor surface)
+//               + Σ user-force impulse per mass) + floor
 // bounds every body's surface speed |v| + |ω| r (r: its bounding radius). The factor leaves room for
 // what collisions pass on (a heavy body hitting a light one at rest gives it up to twice its speed).
+// A motor is a source like a kinematic surface: it drives its bodies' relative speed to its aim, so
+// an island's motors together move a surface at most at the sum of their aims times their levers
+// (World::motorSurfaceSpeed). Twice that: a wheel rolling at its motor's aim moves its rim at 2 ω r.
 // A body over V is slowed to V along its own motion (not stopped), a NaN one is stopped; both are
 // counted in StepStats::speedLimited so a reviewer sees the bound act.
 #pragma once
@@ -37,6 +42,9 @@ class SpeedBound {
   /// fell below it left the scene (through the ground, off its edge) and can strike nothing, so
   /// the fall term stops there instead of growing with it.
   void update(const BodyStore& bodies, const Vec3& gravity, float dt, float waterLift, float floor);
+  /// The fastest surface the motors of one island drive this step (m/s), once their aims are known
+  /// (after the islands are built, before apply).
+  void setMotorSurface(float speed);
   /// Slows every awake dynamic body in [begin, end) whose surface speed is over the bound; returns
   /// how many it slowed. A body wholly below the floor has left the scene and is let fall (slowing
   /// it protects nothing, and counting it hid real acts). Thread-safe over disjoint ranges.
@@ -56,6 +64,9 @@ class SpeedBound {
   float fastestStart_ = 0.0f, highestStart_ = -1e30f, lowest_ = 1e30f;
   float forceAllowance_ = 0.0f;  // m/s of speed user forces have given at most, summed over steps
   float limit_ = 1e30f;
+  float base_ = 0.0f;          // fastest start + free fall + 2 × kinematic + force allowance (m/s)
+  float motorSurface_ = 0.0f;  // the fastest motor surface (m/s)
+  void setLimit();
   Vec3 up_ = Vec3::UnitY();
   float floor_ = -1e30f;  // the static floor along up_ (-1e30: none)
 };

@@ -185,6 +185,7 @@ void World::step() {
     const Island& isl = islands_.islands[k];
     for (uint32_t j = 0; j < isl.bodyCount; ++j) islandOfBody_[islands_.bodies[isl.firstBody + j]] = int32_t(k);
   }
+  if (!joints_.empty()) speedBound_.setMotorSurface(motorSurfaceSpeed());
 
   // 5. Iteration count.
   ControlContext ctx;

@@ -55,6 +55,34 @@ void World::wakeJointedBodies() {
   }
 }
 
+// The fastest surface any island's motors drive (haif/speed_bound.h): a hinge motor turns a body about
+// its anchor at its aim, a slider moves it along at its aim; motors in one island (an arm's servos, a
+// car's wheels) add up. The lever of a hinge is the shorter of its dynamic bodies' (anchor distance
+// plus reach): the wheel of a car, not the chassis it is fixed to, is what the motor spins.
+float World::motorSurfaceSpeed() const {
+  islandMotorSurface_.assign(islands_.islands.size(), 0.0f);
+  const float time = float(stepCount_ + 1) * settings_.dt;  // as prepareJoints reads the servos
+  float fastest = 0.0f;
+  for (const Joint& j : joints_) {
+    const JointDef& d = j.def;
+    if (j.broken || !d.motorEnabled || (d.type != JointType::Hinge && d.type != JointType::Slider)) continue;
+    int32_t island = -1;
+    float lever = 1e30f;
+    for (const auto& [body, anchor] : {std::pair{d.bodyA, d.localAnchorA}, std::pair{d.bodyB, d.localAnchorB}}) {
+      if (body == kWorldBody || bodies_.kind[body] != BodyKind::Dynamic) continue;
+      island = std::max(island, islandOfBody_[body]);
+      lever = std::min(lever, anchor.norm() + speedBound_.reach(body));
+    }
+    if (island < 0) continue;  // asleep: it drives nothing this step
+    const float position = d.servo.empty() ? 0.0f : jointPosition(bodies_, d);
+    const float aim = std::abs(motorAim(d, position, time, settings_.dt));
+    float& sum = islandMotorSurface_[uint32_t(island)];
+    sum += d.type == JointType::Hinge ? aim * lever : aim;
+    fastest = std::max(fastest, sum);
+  }
+  return fastest;
+}
+
 // Bodies whose only unbroken joint is a ball joint to the world or a static body turn about its
 // anchor (integratePinned). Found every step: joints break, and their defs may be edited.
 // Touches only the joints' bodies and the last step's pins, not every body.
