@@ -2,6 +2,7 @@
 // inverse of its normal block, and built again about a moved point before the relax sweeps
 // (reaimForRelax).
 #include "dynamics/contact_solver.h"
+#include "dynamics/friction_patch.h"
 
 #include "core/simd4.h"
 
@@ -316,7 +317,17 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   const Vec3 n = normalSum.squaredNorm() > 1e-12f ? Vec3(normalSum.normalized()) : contact.manifold.points[0].normal;
   Vec3 t1, t2;
   orthonormalBasis(n, t1, t2);
-  const Vec3 rA = centre - pA, rB = centre - pB;
+  // The friction patch: the points that touch (dynamics/friction_patch.h). Where all do, the same
+  // lanes as the normals' and the same centre.
+  const float nearest = simd4::laneMax(used ? depth : F4{} - 1e30f);
+  const simd4::I4 patch = used & (depth >= frictionPatchFloor(nearest, contact.toleranceScale));
+  const int patchCount = -(patch[0] + patch[1] + patch[2] + patch[3]);
+  const F4 qx = patch ? px : F4{}, qy = patch ? py : F4{}, qz = patch ? pz : F4{};
+  const float invPatch = 1.0f / float(patchCount);
+  const Vec3 patchCentre = patchCount == cc.count ? centre
+                                                  : Vec3(simd4::laneSum(qx) * invPatch, simd4::laneSum(qy) * invPatch,
+                                                         simd4::laneSum(qz) * invPatch);
+  const Vec3 rA = patchCentre - pA, rB = patchCentre - pB;
   // Static friction anchor (Contact::anchorA/B): the tangential drift of the two material points,
   // pulled back like penetration (at its own, gentler rate, capped) in the main sweeps.
   // Velocity-level friction never undoes a slow slide, and friction-held structures crept apart
@@ -394,8 +405,12 @@ void prepareContact(const BodyStore& bodies, const Contact& contact, uint32_t ci
   // corner distance times kPatchMeanRadius[count] is exact for a square, an equilateral triangle
   // and a segment (2 points), and within 8 % for any rectangle.
   static constexpr float kPatchMeanRadius[kMaxManifoldPoints + 1] = {0.0f, 0.0f, 0.5f, 0.46f, 0.541f};
-  const F4 dist2 = used ? cx * cx + cy * cy + cz * cz : F4{};
-  cc.twistRadius = kPatchMeanRadius[cc.count] * std::sqrt(simd4::laneSum(dist2) * invCount);
+  // Distances in the contact plane: a point 1 cm up the normal from another (a top's tip and its
+  // axle's end above it) is not a patch 5 mm wide.
+  const F4 ex = qx - patchCentre.x(), ey = qy - patchCentre.y(), ez = qz - patchCentre.z();
+  const F4 es = ex * t1.x() + ey * t1.y() + ez * t1.z(), et = ex * t2.x() + ey * t2.y() + ez * t2.z();
+  const F4 dist2 = patch ? es * es + et * et : F4{};
+  cc.twistRadius = kPatchMeanRadius[patchCount] * std::sqrt(simd4::laneSum(dist2) * invPatch);
   cc.blockExact = prepareBlockInverse(s, t, cc);
 
   if (p.warmStart && !contact.pinched) {

@@ -4,6 +4,7 @@
 
 #include "collision/collide.h"
 #include "collision/compound.h"
+#include "dynamics/friction_patch.h"
 
 #include <algorithm>
 
@@ -149,12 +150,17 @@ inline void updateAnchor(Contact& c, const Transform& xa, const Transform& xb) {
     c.anchored = false;
     return;
   }
+  // At the centre of the friction patch, where prepareContact's friction acts.
+  const float floor = frictionPatchFloor(c.manifold.nearest(), c.toleranceScale);
   Vec3 centre = Vec3::Zero(), n = Vec3::Zero();
+  int patch = 0;
   for (int i = 0; i < m; ++i) {
-    centre += c.manifold.points[i].position;
     n += c.manifold.points[i].normal;
+    if (c.manifold.points[i].depth < floor) continue;
+    centre += c.manifold.points[i].position;
+    ++patch;
   }
-  centre /= float(m);
+  centre /= float(patch);
   if (c.anchored) {
     const Vec3 drift = xb.apply(c.anchorB) - xa.apply(c.anchorA);
     const float along = n.squaredNorm() > 0.0f ? drift.dot(n) / n.norm() : 0.0f;

@@ -78,10 +78,40 @@ TEST(ContactRows, FrictionRowsAndTheirCouplingMatchTheJacobians) {
   }
 
   // The twist lever: the mean distance from the centre of the patch the 4 points bound, taken as
-  // 0.541 times their RMS distance (exact for a square: (√2 + ln(1 + √2)) / 3 / √2).
+  // 0.541 times their RMS distance in the contact plane (exact for a square: (√2 + ln(1 + √2)) / 3 / √2).
+  // The points stand 1 cm apart along the normal; that is no width of the patch.
   double meanSquare = 0.0;
-  for (int i = 0; i < 4; ++i) meanSquare += (s.contact.manifold.points[i].position.cast<double>() - centre).squaredNorm() / 4.0;
+  for (int i = 0; i < 4; ++i) {
+    const Vec3d d = s.contact.manifold.points[i].position.cast<double>() - centre;
+    meanSquare += (d.dot(t1) * d.dot(t1) + d.dot(t2) * d.dot(t2)) / 4.0;
+  }
   EXPECT_NEAR(c.twistRadius, 0.541 * std::sqrt(meanSquare), 1e-5);
+}
+
+TEST(ContactRows, FrictionActsWherePointsTouch) {
+  // Two of the four points are 5 cm apart from the nearest (a top's speculative rim, a box landing on
+  // an edge): the friction rows act at the middle of the two that touch, and the twist's lever is
+  // that segment's. The normal rows keep all four.
+  TiltedPatch s;
+  const Vec3 n = s.contact.manifold.points[0].normal;
+  for (int i = 2; i < 4; ++i) {
+    s.contact.manifold.points[i].depth = -0.05f;
+    s.contact.manifold.points[i].position -= 0.05f * n;
+  }
+  SolverParams sp;
+  sp.warmStart = false;
+  ContactConstraint c;
+  prepareContact(s.bodies, s.contact, 0, sp, c);
+  ASSERT_EQ(c.count, 4);
+  const Vec3d p0 = s.contact.manifold.points[0].position.cast<double>(), p1 = s.contact.manifold.points[1].position.cast<double>();
+  const Vec3d centre = 0.5 * (p0 + p1);
+  const Vec3d t1 = c.tangent1().cast<double>();
+  const Vec3d rA = centre - s.bodies.xf[0].p.cast<double>();
+  EXPECT_LT((rowOf(c.frictionAngularA, 0) - rA.cross(t1)).norm(), 1e-5) << "friction at the touching pair's middle";
+  const Vec3d d = p1 - p0;
+  const double inPlane = std::sqrt(d.squaredNorm() - d.dot(n.cast<double>()) * d.dot(n.cast<double>()));
+  EXPECT_NEAR(c.twistRadius, 0.5 * 0.5 * inPlane, 1e-5) << "a segment's mean distance from its middle: a quarter";
+  for (int i = 0; i < 4; ++i) EXPECT_GT(c.normalMass[i], 0.0f) << "point " << i << " keeps its normal row";
 }
 
 }  // namespace

@@ -43,14 +43,18 @@ ArmRun runRobotArm(int iterations, int steps) {
   return run;
 }
 
-// The arm follows its path at 4 and 10 iterations as it does at 60: its hand no faster than a
-// quarter above the converged run's fastest, and nothing thrown hard enough to meet the speed bound.
+// The arm follows its path at 4 and 10 iterations as it does at 60: its hand no faster than 30 %
+// above the converged run's fastest, and nothing thrown hard enough to meet the speed bound. The
+// fastest moments are the hand's dives as a crate gives way under it (~0.3 m in three steps): 4.5-6.2
+// m/s at every count from 6 to 60, which of them the fastest is chaos (a quarter above, the bound
+// used before, failed at 10 when friction came to act only where points touch, session 58; 12
+// iterations were at 1.22 before it). The lagging servos this guards against reached 16 m/s.
 TEST(ServoArm, TheRobotArmFollowsItsPathAtFewIterations) {
   const ArmRun converged = runRobotArm(60, 300);
   ASSERT_GT(converged.fastestHand, 1.0f);  // the path moves it
   for (const int iterations : {4, 10}) {
     const ArmRun run = runRobotArm(iterations, 300);
-    EXPECT_LT(run.fastestHand, 1.25f * converged.fastestHand) << iterations << " iterations";
+    EXPECT_LT(run.fastestHand, 1.3f * converged.fastestHand) << iterations << " iterations";
     EXPECT_EQ(run.speedLimited, 0u) << iterations << " iterations";
   }
 }
