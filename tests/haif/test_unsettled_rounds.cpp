@@ -48,8 +48,10 @@ TEST(UnsettledRounds, AnIslandWhoseRoundsDoNotSettleStopsFactoringItsSystem) {
         mostFactorsUnsettled = std::max(mostFactorsUnsettled, w.lastStats().exactFactors);
       mostUnsettled = std::max(mostUnsettled, w.lastStats().mostUnsettledSweeps);
       stepsUnsettled += w.lastStats().mostUnsettledSweeps > 0 ? 1u : 0u;
-      // over the bed (its bricks' centres span x in [-2.06, 2.06], 0.5 m half length)
-      if (std::abs(w.bodies().xf[ball].p.x()) < 2.5f) deepest = std::max(deepest, onBed - w.bodies().xf[ball].p.y());
+      // over the bed (its bricks' centres span x in [-2.06, 2.06] and z in [-1.82, 1.82], half sizes
+      // 0.5 and 0.25 m)
+      const Vec3& at = w.bodies().xf[ball].p;
+      if (std::abs(at.x()) < 2.5f && std::abs(at.z()) < 2.0f) deepest = std::max(deepest, onBed - at.y());
     }
     if (mostFactors > 0 && stepsUnsettled > 0) ++rollsUnsettled;
     EXPECT_LE(mostUnsettled, 2u) << speed << " m/s";  // two such sweeps, then the island is swept for the step
