@@ -212,7 +212,7 @@ class World {
   void estimateColdImpulses();
   void putIslandToSleep(const Island& isl);
   void wakeJointedBodies();
-  float motorSurfaceSpeed() const;
+  float motorSurfaceSpeed();
   void stiffenJointedBodies();
   void prepareJoints(uint32_t island, const SolverParams& sp);
   void finishJoints(uint32_t island);
@@ -254,7 +254,7 @@ class World {
   IslandBuilder islandBuilder_;
   IslandSet islands_;
   std::vector<int32_t> islandOfBody_;
-  mutable std::vector<float> islandMotorSurface_;  // per island: its motors' surface speeds summed (scratch)
+  std::vector<float> islandMotorSurface_;  // per island: its motors' surface speeds summed (scratch)
   // The solve order's scratch (world_solve_order.cpp): top-down keys and the cold-start loads.
   struct SolveOrderBuffers {
     std::vector<float> contactHeight;  // solve-order key per contact

@@ -4,6 +4,13 @@
 
 namespace haif {
 
+namespace {
+
+// The simulated time at the end of the step being taken: what the servos' trajectories are read at.
+inline float stepEndTime(uint64_t stepCount, float dt) { return float(stepCount + 1) * dt; }
+
+}  // namespace
+
 uint32_t World::addJoint(const JointDef& def) {
   auto valid = [&](uint32_t b) { return b == kWorldBody || b < bodyCount(); };
   if (!valid(def.bodyA) || !valid(def.bodyB)) throw std::invalid_argument("addJoint: unknown body");
@@ -59,9 +66,9 @@ void World::wakeJointedBodies() {
 // its anchor at its aim, a slider moves it along at its aim; motors in one island (an arm's servos, a
 // car's wheels) add up. The lever of a hinge is the shorter of its dynamic bodies' (anchor distance
 // plus reach): the wheel of a car, not the chassis it is fixed to, is what the motor spins.
-float World::motorSurfaceSpeed() const {
-  islandMotorSurface_.assign(islands_.islands.size(), 0.0f);
-  const float time = float(stepCount_ + 1) * settings_.dt;  // as prepareJoints reads the servos
+float World::motorSurfaceSpeed() {
+  const float time = stepEndTime(stepCount_, settings_.dt);
+  bool summing = false;  // the per-island sums are cleared at the first motor (most jointed scenes have none)
   float fastest = 0.0f;
   for (const Joint& j : joints_) {
     const JointDef& d = j.def;
@@ -76,6 +83,10 @@ float World::motorSurfaceSpeed() const {
     if (island < 0) continue;  // asleep: it drives nothing this step
     const float position = d.servo.empty() ? 0.0f : jointPosition(bodies_, d);
     const float aim = std::abs(motorAim(d, position, time, settings_.dt));
+    if (!summing) {
+      islandMotorSurface_.assign(islands_.islands.size(), 0.0f);
+      summing = true;
+    }
     float& sum = islandMotorSurface_[uint32_t(island)];
     sum += d.type == JointType::Hinge ? aim * lever : aim;
     fastest = std::max(fastest, sum);
@@ -160,7 +171,7 @@ void World::prepareJoints(uint32_t k, const SolverParams& sp) {
   JointConstraint* js = jointConstraints_.data() + isl.firstJoint;
   const uint32_t nj = isl.jointCount;
   const uint32_t* ids = islands_.joints.data() + isl.firstJoint;
-  const float time = float(stepCount_ + 1) * sp.dt;
+  const float time = stepEndTime(stepCount_, sp.dt);
   const JointSolverParams& jp = settings_.joints;
   for (uint32_t j = 0; j < nj; ++j) prepareJointForStep(bodies_, joints_[ids[j]], ids[j], sp, jp, time, js[j]);
   if (sp.warmStart) warmStartJoints(bodies_, js, nj);
