@@ -2,7 +2,25 @@
 // solver (contact_chain.cpp) builds its links' rows with them.
 #include "dynamics/contact_solver.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace haif {
+
+int spreadRank(double css, double ctt, double cst, int count, double single, double along[2]) {
+  const double half = 0.5 * (css + ctt), dev = std::sqrt(0.25 * (css - ctt) * (css - ctt) + cst * cst);
+  const double major = half + dev, minor = std::max(0.0, half - dev);
+  if (count < 2 || !(major > single)) return 1;
+  if (count >= 3 && minor > single && minor * major > kLineWidthRatio * (css + ctt) * (css + ctt)) return 3;
+  // A line along the major axis: an eigenvector of [[css, cst], [cst, ctt]] for `major`, from
+  // whichever of its two forms is the longer (both vanish only where no axis leads).
+  const double ux = major - ctt, uy = cst, vx = cst, vy = major - css;
+  const bool first = ux * ux + uy * uy >= vx * vx + vy * vy;
+  const double x = first ? ux : vx, y = first ? uy : vy, length = std::sqrt(x * x + y * y);
+  along[0] = length > 0.0 ? x / length : 1.0;
+  along[1] = length > 0.0 ? y / length : 0.0;
+  return 2;
+}
 
 int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned mask, double single,
                double B[kMaxManifoldPoints][3]) {
@@ -37,12 +55,10 @@ int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned m
     ctt += t * t;
     cst += s * t;
   }
-  const double spread = css + ctt;
-  const bool onePlace = m < 2 || !(spread > single);
-  const bool collinear = !onePlace && css * ctt - cst * cst <= 1e-4 * spread * spread;
-  const int k = onePlace ? 1 : m >= 3 && !collinear ? 3 : 2;
-  if (k == 2 && ctt > css)
-    for (int i = 0; i < count; ++i) B[i][1] = B[i][2];
+  double along[2];
+  const int k = spreadRank(css, ctt, cst, m, single, along);
+  if (k == 2)
+    for (int i = 0; i < count; ++i) B[i][1] = along[0] * B[i][1] + along[1] * B[i][2];
   for (int i = 0; i < count; ++i)
     for (int a = k; a < 3; ++a) B[i][a] = 0.0;
   return k;

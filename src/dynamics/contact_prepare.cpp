@@ -102,15 +102,15 @@ bool prepareBlockInverse(F4 s, F4 t, ContactConstraint& cc) {
   const D4 ss = Bc[1] * Bc[1], tt = Bc[2] * Bc[2], st = Bc[1] * Bc[2];
   const double css = (ss[0] + ss[1]) + (ss[2] + ss[3]), ctt = (tt[0] + tt[1]) + (tt[2] + tt[3]);
   const double cst = (st[0] + st[1]) + (st[2] + st[3]);
-  const double spread = css + ctt;
-  if (!(spread > singlePlaceSpread(cc))) return false;  // rank 1: all points in one place
+  double direction[2];
+  const int rank = spreadRank(css, ctt, cst, m, singlePlaceSpread(cc), direction);
+  if (rank < 2) return false;  // all points in one place
   float K[kMaxManifoldPoints][kMaxManifoldPoints];
   normalCoupling(cc, K);
   auto& G = cc.blockInverse;
-  const bool collinear = css * ctt - cst * cst <= 1e-4 * spread * spread;
-  if (m >= 3 && !collinear) return patchBlockInverse(K, Bc, G);
-  // Rank 2: [1, the coordinate along the line].
-  const D4 along = ctt > css ? Bc[2] : Bc[1];
+  if (rank == 3) return patchBlockInverse(K, Bc, G);
+  // A line: [1, the coordinate along it].
+  const D4 along = direction[0] * Bc[1] + direction[1] * Bc[2];
   double B[kMaxManifoldPoints][3];
   for (int i = 0; i < kMaxManifoldPoints; ++i) {
     B[i][0] = used[i];

@@ -241,6 +241,9 @@ void planarCoords(const Manifold& mf, const Vec3& centre, const Vec3& t1, const 
 /// bricks at 24 m/s in one step. Below it the points are solved by passes (and as one row by a chain).
 constexpr double kSinglePlaceFraction = 1e-4;
 constexpr double kSinglePlaceFloor = 1e-12;  // m², however short the levers
+/// Points whose spread across their major axis is below this fraction (of the square of the whole
+/// spread, as minor × major) are a line: a width under ~1 % of the length.
+constexpr double kLineWidthRatio = 1e-4;
 inline double singlePlaceSpread(const ContactConstraint& c) {
   float lever2 = 0.0f;
   for (int i = 0; i < c.count; ++i) {
@@ -250,10 +253,19 @@ inline double singlePlaceSpread(const ContactConstraint& c) {
   return std::max(kSinglePlaceFloor, kSinglePlaceFraction * double(lever2));
 }
 
+/// How many independent ways a manifold's points can share its load (1 + the directions of the contact
+/// plane they span), from their spread about their mean: css = Σs², ctt = Σt², cst = Σst (m²) over
+/// `count` points. The spread is read per principal direction, each against `single`
+/// (singlePlaceSpread): a patch 6 mm long and 0.1 mm wide is a line, as a point 0.3 mm across is one
+/// place, since float cannot read the coupling's variation across it either (its block turned about
+/// the line's own axis with a gain of 1e7 over a row's mass). A width under 1 % of the length is a
+/// line too. For a line, `along` gets its direction (s, t components; unset otherwise).
+int spreadRank(double css, double ctt, double cst, int count, double single, double along[2]);
+
 /// In-plane basis of the points in `mask` (bit i: point i) of `count` points at `coords`, for a
 /// normal block: B[i] = [1, s_i, t_i] (rows of the other points are zero). Returns the rank k it
-/// spans (3 for a patch, 2 for collinear points, 1 for a single place: a spread within `single`,
-/// singlePlaceSpread); columns from k on are zero.
+/// spans (spreadRank: 3 for a patch, 2 for a line, 1 for a single place); for a line B[i][1] is the
+/// coordinate along it. Columns from k on are zero.
 int pointBasis(const double coords[kMaxManifoldPoints][2], int count, unsigned mask, double single,
                double B[kMaxManifoldPoints][3]);
 

@@ -149,7 +149,9 @@ TEST(NormalBlock, PlaneBlockIsThePseudoInverseOfTheCouplingOnItsRange) {
 struct BrickSliver {
   BodyStore bodies;
   Contact contact;
-  explicit BrickSliver(float across) {
+  // A rectangle `across` wide in x and `width` high in y (a quarter of `across` unless given).
+  explicit BrickSliver(float across, float width = -1.0f) {
+    if (width < 0.0f) width = 0.25f * across;
     const float m = 250.0f;
     const Vec3 h(0.5f, 0.25f, 0.25f);
     const Mat3 inertia = Vec3(m / 3.0f * (h.y() * h.y() + h.z() * h.z()), m / 3.0f * (h.x() * h.x() + h.z() * h.z()),
@@ -163,9 +165,9 @@ struct BrickSliver {
     bodies.add(BodyKind::Dynamic, b, m, inertia);
     contact.a = 0;
     contact.b = 1;
-    // A rectangle `across` wide in x and a quarter of that in y, at the corner of the overlap.
+    // At the corner of the overlap.
     const Vec3 corner(-1.56055f, 0.99989f, 0.5201f);
-    const Vec3 offsets[4] = {{0.0f, 0.0f, 0.0f}, {0.0f, -0.25f * across, 0.0f}, {across, -0.25f * across, 0.0f}, {across, 0.0f, 0.0f}};
+    const Vec3 offsets[4] = {{0.0f, 0.0f, 0.0f}, {0.0f, -width, 0.0f}, {across, -width, 0.0f}, {across, 0.0f, 0.0f}};
     contact.manifold.count = 4;
     for (int i = 0; i < 4; ++i) {
       ContactPoint& p = contact.manifold.points[i];
@@ -195,6 +197,55 @@ TEST(NormalBlock, APatchTooSmallForFloatToReadIsOnePlace) {
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) largest = std::max(largest, std::fabs(c.blockInverse[i][j]));
   EXPECT_LT(largest, 1e5f) << "the 3 cm patch's inverse reads rounding too";
+}
+
+// The largest gain of a block over its rows' own masses: max G_ii K_ii (1 for a row alone).
+float blockGain(const ContactConstraint& c) {
+  float K[kMaxManifoldPoints][kMaxManifoldPoints];
+  normalCoupling(c, K);
+  float gain = 0.0f;
+  for (int i = 0; i < c.count; ++i) gain = std::max(gain, c.blockInverse[i][i] * K[i][i]);
+  return gain;
+}
+
+// The same rule across a patch as over it: a patch 6 mm long and 0.1 mm wide on these bricks (the
+// points of a 3-layer bed's speculative contacts) was a patch of rank 3, its turn about the line's own
+// axis read from rounding across 0.1 mm: gains of 1e7 over a row's mass, four in ten thousand blocks
+// of that bed. Its width is no direction; it is a line, whose block stays well within float.
+TEST(NormalBlock, ASliverAlongALineIsALine) {
+  BrickSliver line(0.006f, 0.0001f);
+  ContactConstraint c;
+  prepareContact(line.bodies, line.contact, 0, params(), c);
+  ASSERT_TRUE(c.blockExact) << "a 6 mm line on 1 m bricks lost its block";
+  EXPECT_LT(blockGain(c), 1e5f) << "the line's width was read as a direction";
+  // A patch 6 mm by 3 mm keeps its third direction (and a gain float can read).
+  BrickSliver patch(0.006f, 0.003f);
+  prepareContact(patch.bodies, patch.contact, 0, params(), c);
+  ASSERT_TRUE(c.blockExact);
+  EXPECT_LT(blockGain(c), 1e5f);
+}
+
+// spreadRank reads each principal direction, whatever the axes the points are given in.
+TEST(NormalBlock, APatchsRankDoesNotDependOnItsAxes) {
+  const double single = 1e-6;
+  for (const double angle : {0.0, 0.3, 0.7854, 1.2, 2.5}) {
+    const double c = std::cos(angle), s = std::sin(angle);
+    // Points at (±a, ±b) in the patch's own axes, turned by `angle`.
+    auto rank = [&](double a, double b, double* along) {
+      double css = 0.0, ctt = 0.0, cst = 0.0;
+      for (const double u : {-a, a})
+        for (const double v : {-b, b}) {
+          const double x = c * u - s * v, y = s * u + c * v;
+          css += x * x, ctt += y * y, cst += x * y;
+        }
+      return spreadRank(css, ctt, cst, 4, single, along);
+    };
+    double along[2];
+    EXPECT_EQ(rank(0.1, 0.05, along), 3) << angle;
+    EXPECT_EQ(rank(0.1, 0.0001, along), 2) << angle;  // 0.2 mm wide: under the single place's spread
+    EXPECT_NEAR(std::fabs(along[0] * c + along[1] * s), 1.0, 1e-9) << angle;  // along the line
+    EXPECT_EQ(rank(0.0002, 0.0002, along), 1) << angle;
+  }
 }
 
 }  // namespace
