@@ -76,12 +76,18 @@ struct DenseNormalSystem {
   static size_t doublesFor(int rows) { return 3 * size_t(rows) * size_t(rows); }
   /// Uses `storage` (doublesFor(rowsHeld) doubles) for systems of up to rowsHeld rows.
   void attach(double* storage, int rowsHeld) {
-    rows = rank = 0;  // nothing factored: a system whose links are all let go substitutes nothing
-    unsettledSweeps = factors = 0;
+    startSolve();
     stride = rowsHeld;
     factor = storage;
     nullBasis = factor + size_t(rowsHeld) * size_t(rowsHeld);
     nullGram = nullBasis + size_t(rowsHeld) * size_t(rowsHeld);
+  }
+  /// Forgets what a solve of the step kept (World::solveIslands, each time: the solve-error probe
+  /// solves the step three times, and each must start where the first did).
+  void startSolve() {
+    rows = rank = 0;  // nothing factored: a system whose links are all let go substitutes nothing
+    unsettledSweeps = factors = 0;
+    jointsHeld = heldWithBias = jointsUnsound = false;
   }
   int stride = 0;                         ///< rows the attached storage holds (row length of each matrix)
   double* factor = nullptr;               ///< in pivot order: L below the diagonal, D on it

@@ -360,9 +360,11 @@ class World {
   void resetPhaseClocks();
   int solveErrorEvery_ = 0;
   double measurementMs_ = 0.0;  // time of this step's reference solve, excluded from its timings
-  // The solve-error probe's velocities (world_solve_error.cpp): saved, the solve's start, the reference.
+  // The solve-error probe's velocities (world_solve_error.cpp): saved, the solve's start, the
+  // reference; and the islands' tails, which a solve may take in (a landing through the tail).
   struct ProbeBuffers {
     std::vector<Vec3> saveV, saveW, startV, startW, refV, refW;
+    std::vector<uint32_t> saveTail;
   } probe_;
 
   SpeedBound speedBound_;

@@ -202,6 +202,8 @@ void World::solveIslands(int iterations) {
   const SolverParams sp = solverParams();
   const float tol = settings_.residualTolerance;
   const int iMin = std::min(controller_->iMin, iterations);
+  for (uint32_t k = 0; k < denseOf_.size(); ++k)
+    if (denseOf_[k] >= 0) denseSystems_[denseOf_[k]].startSolve();
   auto prepareIsland = [&](uint32_t k) {
     const Island& isl = islands_.islands[k];
     ContactConstraint* cs = constraints_.data() + isl.firstContact;

@@ -33,13 +33,21 @@ double World::measureSolveError(int iterations) {
   // the solver's starting point (after warm starting), v_I after the iterations, v* converged.
   const uint32_t n = bodyCount();
   const auto t0 = Clock::now();
+  // Each solve starts from the same state: the velocities and the islands' tails put back (the
+  // contacts' impulses are only read, a landing's only cleared; solveIslands starts its dense
+  // systems afresh).
   probe_.saveV = bodies_.v;
   probe_.saveW = bodies_.w;
+  probe_.saveTail = order_.tail;
+  auto restore = [&] {
+    bodies_.v = probe_.saveV;
+    bodies_.w = probe_.saveW;
+    order_.tail = probe_.saveTail;
+  };
   solveIslands(0);  // prepare + warm start only
   probe_.startV = bodies_.v;
   probe_.startW = bodies_.w;
-  bodies_.v = probe_.saveV;
-  bodies_.w = probe_.saveW;
+  restore();
   {
     // The reference solve converges: a tight tolerance and no floor on the sweeps, put back on the
     // way out of this block however it is left.
@@ -49,8 +57,7 @@ double World::measureSolveError(int iterations) {
   }
   probe_.refV = bodies_.v;
   probe_.refW = bodies_.w;
-  bodies_.v = probe_.saveV;
-  bodies_.w = probe_.saveW;
+  restore();
   measurementMs_ = msSince(t0);  // the reference solve is measurement, not step time
   resetPhaseClocks();
   solveIslands(iterations);
