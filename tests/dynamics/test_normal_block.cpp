@@ -210,8 +210,8 @@ float blockGain(const ContactConstraint& c) {
 
 // The same rule across a patch as over it: a patch 6 mm long and 0.1 mm wide on these bricks (the
 // points of a 3-layer bed's speculative contacts) was a patch of rank 3, its turn about the line's own
-// axis read from rounding across 0.1 mm: gains of 1e7 over a row's mass, four in ten thousand blocks
-// of that bed. Its width is no direction; it is a line, whose block stays well within float.
+// axis read from rounding across 0.1 mm: gains of 1e5-1e9 over a row's mass, about four in a
+// thousand blocks of that bed. Its width is no direction; it is a line, whose block stays well within float.
 TEST(NormalBlock, ASliverAlongALineIsALine) {
   BrickSliver line(0.006f, 0.0001f);
   ContactConstraint c;

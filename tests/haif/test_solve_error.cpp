@@ -81,7 +81,8 @@ TEST(SolveError, MeasuringDoesNotChangeAnIslandSolvedTogether) {
   // The reference solves run the step's solve twice before the real one: what a solve keeps for the
   // rest of its step (a dense system's count of unsettled sweeps, which sends the island to sweeps
   // after two; a tail landed through) must start afresh for each, or the measured step differs
-  // (tower_collapse, ball_pit, demo and tumbler did under `haif run`'s default --error-every 10).
+  // (demo, tower_collapse, ball_pit, tumbler and compound_showcase did under `haif run`'s default
+  // --error-every 10).
   // A 20 t ball rolled onto a bed of 250 kg bricks: its island is solved together, and at some
   // roll speeds its rounds do not settle (UnsettledRounds; which ones is chaos).
   auto run = [](float speed, int every) {
