@@ -15,6 +15,7 @@
 #include "core/body_store.h"
 #include "dynamics/contact_chain.h"
 #include "dynamics/joint_tree.h"
+#include "dynamics/motor_mass.h"
 
 #include <Eigen/Core>
 
@@ -35,6 +36,9 @@ struct JointCoupling {
   Eigen::Vector3d* changeW = nullptr;
   const ContactConstraint* contacts = nullptr;  ///< the island's contacts the system solves
   uint32_t contactCount = 0;
+  /// The island's servos and motors solved through its tree (null or count 0: none), read as holding
+  /// their axes when judging what the joints carry (jointsCarryContacts).
+  const TreeMotors* motors = nullptr;
 };
 
 /// Notes the velocity change of contact c's impulses `applied` (per point) on its bodies.
@@ -54,6 +58,10 @@ void holdJointChange(BodyStore& bodies, const JointCoupling& coupling);
 /// tree's factor does not hold its joints against the push (the answer is not to be used).
 bool jointResponse(const BodyStore& bodies, const JointCoupling& coupling, const ContactConstraint& c,
                    const ChainLink& link, int r);
+/// What the island's motors, holding their axes, take back of the motion jointResponse left row r of
+/// link `link` (contact c): gᵀ S⁻¹ g (dynamics/motor_mass.h); call before clearJointResponse.
+double motorsAtResponse(const BodyStore& bodies, const JointCoupling& coupling, const ContactConstraint& c,
+                        const ChainLink& link, int r);
 /// Row q of link `link` (contact c) read at coupling.dv/dw: R_q Δ.
 double rowAtResponse(const JointCoupling& coupling, const ContactConstraint& c, const ChainLink& link, int q);
 /// Zeroes the scratch jointResponse wrote.
@@ -68,12 +76,14 @@ void clearJointResponse(const JointCoupling& coupling);
 inline constexpr float kJointCoupledRatioFactor = 2.0f;
 
 /// True when a contact of the island moves along its normal by at most 1/ratio as much for a push
-/// through the joints as for the same push on its own bodies, for some link's force row: a sweep then
-/// passes the push on to the joints at about 1/ratio a sweep. Or when a contact presses two dynamic
-/// bodies whose masses differ by `ratio` or more: a sweep passes a push through the lighter one a
-/// fraction of the heavier one's share, joints or not (a ragdoll landing on its own forearm, 1.5 kg
-/// under a 20 kg chest, sank 5.9 cm into it at 10 sweeps). Either way, only if no contact row is
-/// held (almost) still by the joints.
+/// through the joints (and the motors, holding their axes) as for the same push on its own bodies,
+/// for some link's force row: a sweep then passes the push on to the joints at about 1/ratio a sweep.
+/// Or when a contact presses two dynamic bodies whose masses differ by `ratio` or more: a sweep
+/// passes a push through the lighter one a fraction of the heavier one's share, joints or not (a
+/// ragdoll landing on its own forearm, 1.5 kg under a 20 kg chest, sank 5.9 cm into it at 10
+/// sweeps); in an island with motors, a jointed body weighs what the joints and motors make it along
+/// the row (a servo's hand on a crate). Either way, only if no contact row is held (almost) still by
+/// the joints.
 bool jointsCarryContacts(const BodyStore& bodies, const JointCoupling& coupling, const ContactConstraint* cs,
                          const ChainLink* links, uint32_t n, float ratio);
 

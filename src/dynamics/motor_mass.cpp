@@ -9,9 +9,6 @@ namespace haif {
 
 namespace {
 
-/// Motors solved together, at most: S is factored every step (the cube of the count) and each motor
-/// costs a solve of the tree to make. Islands with more keep the sweep's motor pass.
-constexpr uint32_t kMaxTreeMotors = 16;
 /// A motor whose S diagonal is below this fraction of its own two bodies' (the tree locks its axis:
 /// a loop, a merged joint) would ask large impulses of the tree's rounding: the island keeps the sweep.
 constexpr double kHeldAxis = 1e-3;
@@ -91,6 +88,20 @@ void prepareTreeMotors(JointConstraint* js, uint32_t n, JointTree& tree, TreeMot
   if (!cholesky(L, m)) return;
   motors.count = m;
   for (uint32_t a = 0; a < m; ++a) js[motors.joint[a]].motorThroughTree = true;
+}
+
+double motorsTakeBack(const TreeMotors& motors, const double* rowVelocity) {
+  // gᵀ S⁻¹ g = |L⁻¹ g|², forward substitution through S's Cholesky factor.
+  const uint32_t m = motors.count;
+  const double* L = motors.system.data() + size_t(m) * m;
+  double y[kMaxTreeMotors], taken = 0.0;
+  for (uint32_t a = 0; a < m; ++a) {
+    double v = rowVelocity[a];
+    for (uint32_t k = 0; k < a; ++k) v -= L[a * m + k] * y[k];
+    y[a] = v / L[a * m + a];
+    taken += y[a] * y[a];
+  }
+  return taken;
 }
 
 float solveTreeMotors(BodyStore& bodies, JointConstraint* js, const TreeMotors& motors, bool useBias) {

@@ -19,6 +19,10 @@
 
 namespace haif {
 
+/// Motors solved together, at most: S is factored every step (the cube of the count) and each motor
+/// costs a solve of the tree to make. Islands with more keep the sweep's motor pass.
+inline constexpr uint32_t kMaxTreeMotors = 16;
+
 /// An island's motors seen through its joint tree: their system S, made once a step. Buffers grow to
 /// the largest island seen and are reused.
 struct TreeMotors {
@@ -32,6 +36,14 @@ struct TreeMotors {
 /// Marks them (JointConstraint::motorThroughTree) so that the sweep's own motor pass leaves them.
 /// Past kMaxTreeMotors motors, or a motor whose axis the tree (nearly) locks, none are taken.
 void prepareTreeMotors(JointConstraint* js, uint32_t n, JointTree& tree, TreeMotors& motors);
+
+/// What the motors take back of a push when they hold their axes: with `rowVelocity[a]` motor a's
+/// row read under the push (the tree's answer included), the motors' impulses d = −S⁻¹ g give the
+/// pushed row back gᵀ S⁻¹ g of its motion (S is symmetric: the row's motion under motor a's push
+/// through the tree is motor a's row under the row's push). Force bounds are not read: whether a
+/// motor has the force to hold is for the solve to find (a servo at its bound last step pushes as
+/// hard this step, and the bodies it drives are no lighter for it). Zero when `motors` is empty.
+double motorsTakeBack(const TreeMotors& motors, const double* rowVelocity);
 
 /// One sweep's motors: the impulses that bring every motor to its speed once the tree answers
 /// (projected onto their force bounds), applied to the motors' bodies. The tree's solve must follow.

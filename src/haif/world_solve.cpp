@@ -471,6 +471,7 @@ JointCoupling World::jointCouplingOf(uint32_t k) {
   c.changeW = couplingChangeW_.data();
   c.contacts = constraints_.data() + isl.firstContact;
   c.contactCount = isl.contactCount - tailOf(k);
+  c.motors = &treeMotors_[k];
   return c;
 }
 
