@@ -558,6 +558,41 @@ struct RowMajor {
   double* operator[](int i) const { return data + size_t(i) * size_t(stride); }
 };
 
+}  // namespace
+
+void solveFactored(const DenseNormalSystem& d, const double* b, double* x, double* c) {
+  const int rows = d.rows, r = d.rank, free = rows - r;
+  const RowMajor S{d.factor, d.stride};
+  // The independent rows: L11 D L11ᵀ x1 = b1, in pivot order.
+  for (int k = 0; k < r; ++k) {
+    double v = b[d.order[k]];
+    for (int m = 0; m < k; ++m) v -= S[k][m] * x[m];
+    x[k] = v;
+  }
+  for (int k = 0; k < r; ++k) x[k] /= S[k][k];
+  for (int k = r; k-- > 0;)
+    for (int m = k + 1; m < r; ++m) x[k] -= S[m][k] * x[m];
+  for (int f = 0; f < free; ++f) x[r + f] = 0.0;
+  if (free == 0) return;
+  // Least norm: x − N (NᵀN)⁻¹ Nᵀ x with N = [T; I] and x's free part 0.
+  const RowMajor Tt{d.nullBasis, d.stride}, G{d.nullGram, d.stride};
+  for (int f = 0; f < free; ++f) {
+    double v = 0.0;
+    for (int i = 0; i < r; ++i) v += Tt[f][i] * x[i];
+    for (int m = 0; m < f; ++m) v -= G[f][m] * c[m];
+    c[f] = v / G[f][f];
+  }
+  for (int f = free; f-- > 0;) {
+    for (int m = f + 1; m < free; ++m) c[f] -= G[m][f] * c[m];
+    c[f] /= G[f][f];
+  }
+  for (int f = 0; f < free; ++f)  // each x[i] takes the terms in the order of f, as before
+    for (int i = 0; i < r; ++i) x[i] -= Tt[f][i] * c[f];
+  for (int f = 0; f < free; ++f) x[r + f] = -c[f];
+}
+
+namespace {
+
 // A small island's system: every pair of links sharing a body couples, so it is dense. It is solved
 // in the least-squares sense: a table on four legs has more normal rows than its bodies have ways
 // to move, and rows that ask for what no motion gives (legs pressed to slightly different depths)
@@ -751,44 +786,16 @@ struct DenseSystem {
   }
 
   void substitute() {
-    const int rows = d.rows, r = d.rank, free = rows - r;
+    const int rows = d.rows;
     if (rows == 0) return;
-    const RowMajor S{d.factor, d.stride};
-    double* x = d.x;
-    // The independent rows: L11 D L11ᵀ x1 = b1, in pivot order.
-    for (int k = 0; k < r; ++k) {
-      const int row = d.order[k];
-      double v = links[d.linkOf[row]].rhs[d.partOf[row]];
-      for (int m = 0; m < k; ++m) v -= S[k][m] * x[m];
-      x[k] = v;
-    }
-    for (int k = 0; k < r; ++k) x[k] /= S[k][k];
-    for (int k = r; k-- > 0;)
-      for (int m = k + 1; m < r; ++m) x[k] -= S[m][k] * x[m];
-    for (int f = 0; f < free; ++f) x[r + f] = 0.0;
-    if (free > 0) {
-      // Least norm: x − N (NᵀN)⁻¹ Nᵀ x with N = [T; I] and x's free part 0.
-      const RowMajor Tt{d.nullBasis, d.stride}, G{d.nullGram, d.stride};
-      double* c = d.c;
-      for (int f = 0; f < free; ++f) {
-        double v = 0.0;
-        for (int i = 0; i < r; ++i) v += Tt[f][i] * x[i];
-        for (int m = 0; m < f; ++m) v -= G[f][m] * c[m];
-        c[f] = v / G[f][f];
-      }
-      for (int f = free; f-- > 0;) {
-        for (int m = f + 1; m < free; ++m) c[f] -= G[m][f] * c[m];
-        c[f] /= G[f][f];
-      }
-      for (int f = 0; f < free; ++f)  // each x[i] takes the terms in the order of f, as before
-        for (int i = 0; i < r; ++i) x[i] -= Tt[f][i] * c[f];
-      for (int f = 0; f < free; ++f) x[r + f] = -c[f];
-    }
+    double b[DenseNormalSystem::kMaxRows];
+    for (int row = 0; row < rows; ++row) b[row] = links[d.linkOf[row]].rhs[d.partOf[row]];
+    solveFactored(d, b, d.x, d.c);
     for (uint32_t j = 0; j < n; ++j) {
       if (d.rowOf[j] < 0) continue;
       for (int q = 0; q < 3; ++q) links[j].mu[q] = 0.0f;
     }
-    for (int k = 0; k < rows; ++k) links[d.linkOf[d.order[k]]].mu[d.partOf[d.order[k]]] = float(x[k]);
+    for (int k = 0; k < rows; ++k) links[d.linkOf[d.order[k]]].mu[d.partOf[d.order[k]]] = float(d.x[k]);
   }
   void rowsRebuilt(uint32_t) {}
 };

@@ -111,6 +111,12 @@ struct DenseNormalSystem {
   int factors = 0;
 };
 
+/// The least-norm solution of the system as last factored: `b` per row (rows numbered as
+/// system.linkOf / partOf number them), `x` in pivot order (row system.order[k] is x[k]); `scratch`
+/// holds rows − rank doubles. The rounds' substitution, and the motors' reading of the contacts
+/// (dynamics/joint_coupling.h).
+void solveFactored(const DenseNormalSystem& system, const double* b, double* x, double* scratch);
+
 /// Builds the links of an island's contacts `cs[0, n)` for the dense solve: at least `minLinks` and
 /// at most DenseNormalSystem::kMaxLinks contacts of one normal each, no pinched body, at most
 /// `rowsHeld` (≤ kMaxRows) virtual rows. False: sweep as usual.

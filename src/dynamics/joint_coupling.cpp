@@ -15,6 +15,9 @@ using Vec3d = Eigen::Vector3d;
 /// The joints' answer to a push counts as holding them when it leaves their rows moving at most this
 /// fraction of what the push alone gives them (the tree's own rounding leaves ~1e-9).
 constexpr double kJointHoldTolerance = 1e-4;
+/// A motor's system through the contacts keeps at least this fraction of its own through the tree
+/// (solveMotorsThroughContacts): held still, its row asks its force bound, not rounding's answer.
+constexpr double kContactHeldMotor = 1e-3;
 /// A contact row that moves less than this fraction as much through the joints as on its own bodies
 /// is held by them (its force goes into a joint); an island with one is swept.
 constexpr double kJointHeldRow = 1e-3;
@@ -54,6 +57,30 @@ PairPush contactPush(const BodyStore& bodies, const ContactConstraint& c, const 
   return push;
 }
 
+// Adds −M⁻¹ Jᵀ x to coupling.dv/dw: what the joints' impulses x (the tree's rows, kJointBlockRows a
+// joint in elimination order) take back.
+void takeBackThroughJoints(const BodyStore& bodies, const JointCoupling& coupling, const double* xs) {
+  const JointTree& tree = *coupling.tree;
+  for (uint32_t e = 0; e < tree.size(); ++e) {
+    const JointConstraint& jc = coupling.joints[tree.jointAt(e)];
+    const double* x = xs + kJointBlockRows * e;
+    Vec3d P = Vec3d::Zero(), angA = Vec3d::Zero(), angB = Vec3d::Zero();
+    for (int i = 0; i < jc.blockRows; ++i) {
+      P += x[i] * toDouble(jc.block[i].lin);
+      angA += x[i] * toDouble(jc.block[i].angA);
+      angB += x[i] * toDouble(jc.block[i].angB);
+    }
+    if (jc.dynA) {
+      coupling.dv[jc.a] += double(bodies.invMass[jc.a]) * P;
+      coupling.dw[jc.a] += bodies.invInertiaWorld[jc.a].cast<double>() * angA;
+    }
+    if (jc.dynB) {
+      coupling.dv[jc.b] -= double(bodies.invMass[jc.b]) * P;
+      coupling.dw[jc.b] -= bodies.invInertiaWorld[jc.b].cast<double>() * angB;
+    }
+  }
+}
+
 }  // namespace
 
 bool jointResponse(const BodyStore& bodies, const JointCoupling& coupling, const ContactConstraint& c,
@@ -75,25 +102,7 @@ bool jointResponse(const BodyStore& bodies, const JointCoupling& coupling, const
     }
   }
   tree.solveRows();
-  // −M⁻¹ Jᵀ x: what the joints' impulses take back.
-  for (uint32_t e = 0; e < tree.size(); ++e) {
-    const JointConstraint& jc = coupling.joints[tree.jointAt(e)];
-    const double* x = tree.rowsOf(e);
-    Vec3d P = Vec3d::Zero(), angA = Vec3d::Zero(), angB = Vec3d::Zero();
-    for (int i = 0; i < jc.blockRows; ++i) {
-      P += x[i] * toDouble(jc.block[i].lin);
-      angA += x[i] * toDouble(jc.block[i].angA);
-      angB += x[i] * toDouble(jc.block[i].angB);
-    }
-    if (jc.dynA) {
-      coupling.dv[jc.a] += double(bodies.invMass[jc.a]) * P;
-      coupling.dw[jc.a] += bodies.invInertiaWorld[jc.a].cast<double>() * angA;
-    }
-    if (jc.dynB) {
-      coupling.dv[jc.b] -= double(bodies.invMass[jc.b]) * P;
-      coupling.dw[jc.b] -= bodies.invInertiaWorld[jc.b].cast<double>() * angB;
-    }
-  }
+  takeBackThroughJoints(bodies, coupling, tree.rowsOf(0));
   // The answer holds the joints when the tree's factor is sound. Where it kept nearly redundant
   // rows, or let go of rows that were not quite redundant (a bridge hinged to a post at each end, a
   // ragdoll's limbs), it leaves the rows moving as fast as the push itself, and the joints' answer
@@ -255,6 +264,87 @@ bool jointsCarryContacts(const BodyStore& bodies, const JointCoupling& coupling,
       const double s = share(j, r, false);  // the rows are solved through the tree alone
       if (!(s > kJointHeldRow)) return false;
     }
+  return true;
+}
+
+bool solveMotorsThroughContacts(BodyStore& bodies, const JointCoupling& coupling, ContactConstraint* cs,
+                                const ChainLink* links, const DenseNormalSystem& system, bool useBias, float& largest) {
+  if (!coupling.motors || coupling.motors->count == 0 || system.rows == 0) return false;
+  const TreeMotors& motors = *coupling.motors;
+  const uint32_t m = motors.count;
+  const int rows = system.rows;
+  // C: each contact row's motion under each motor's unit push, the tree answering (rows × m).
+  double C[DenseNormalSystem::kMaxRows * kMaxTreeMotors], X[DenseNormalSystem::kMaxRows * kMaxTreeMotors];
+  const size_t treeRows = size_t(kJointBlockRows) * coupling.tree->size();
+  for (uint32_t a = 0; a < m; ++a) {
+    const JointConstraint& motor = coupling.joints[motors.joint[a]];
+    const PairPush push = PairPush::onJointRow(motor, motor.extra[0]);
+    takeBackThroughJoints(bodies, coupling, &motors.answer[a * treeRows]);
+    if (motor.dynA) coupling.dv[motor.a] += push.va, coupling.dw[motor.a] += push.wa;
+    if (motor.dynB) coupling.dv[motor.b] += push.vb, coupling.dw[motor.b] += push.wb;
+    for (int i = 0; i < rows; ++i) {
+      const uint32_t j = system.linkOf[i];
+      C[i * m + a] = rowAtResponse(coupling, cs[j], links[j], system.partOf[i]);
+    }
+    clearJointResponse(coupling);
+  }
+  // X = A⁺ C, the contacts' answer to each push (least norm, as the rounds solve them).
+  double b[DenseNormalSystem::kMaxRows], x[DenseNormalSystem::kMaxRows], scratch[DenseNormalSystem::kMaxRows];
+  for (uint32_t a = 0; a < m; ++a) {
+    for (int i = 0; i < rows; ++i) b[i] = C[i * m + a];
+    solveFactored(system, b, x, scratch);
+    for (int k = 0; k < rows; ++k) X[system.order[k] * m + a] = x[k];
+  }
+  // S' = S − Cᵀ X: the motors' system with the contacts answering, and its factor.
+  double Sp[kMaxTreeMotors * kMaxTreeMotors], Lp[kMaxTreeMotors * kMaxTreeMotors];
+  const double* S = motors.system.data();
+  for (uint32_t a = 0; a < m; ++a)
+    for (uint32_t c = 0; c < m; ++c) {
+      double v = S[a * m + c];
+      for (int i = 0; i < rows; ++i) v -= C[i * m + a] * X[i * m + c];
+      Sp[a * m + c] = v;
+    }
+  for (uint32_t a = 0; a < m; ++a)
+    for (uint32_t c = 0; c < a; ++c) Sp[a * m + c] = Sp[c * m + a] = 0.5 * (Sp[a * m + c] + Sp[c * m + a]);
+  // A motor the contacts hold still (a hand pressing a crate on the ground) has S' ≈ 0 up to
+  // rounding: kept positive, its change is large and its force bound takes it.
+  for (uint32_t a = 0; a < m; ++a) Sp[a * m + a] += kContactHeldMotor * S[a * m + a];
+  std::copy_n(Sp, size_t(m) * m, Lp);
+  if (!choleskyFactor(Lp, m)) return false;
+  double d[kMaxTreeMotors];
+  motorChanges(bodies, coupling.joints, motors, Sp, Lp, useBias, d);
+  // The contacts answer with −X d; read as holding, they may not pull: where a point would, the
+  // motors are solved as before (the contacts let go, the motors see the bodies free).
+  for (int i = 0; i < rows; ++i) {
+    double v = 0.0;
+    for (uint32_t a = 0; a < m; ++a) v -= X[i * m + a] * d[a];
+    b[i] = v;
+  }
+  float applied[DenseNormalSystem::kMaxLinks][kMaxManifoldPoints] = {};
+  for (uint32_t j = 0; j < coupling.contactCount; ++j) {
+    const int first = system.rowOf[j];
+    if (first < 0) continue;
+    const ChainLink& link = links[j];
+    for (int p = 0; p < cs[j].count; ++p) {
+      if (!(link.points & (1u << p))) continue;
+      double change = 0.0;
+      for (int q = 0; q < link.rank; ++q) change += double(link.basis[p][q]) * b[first + q];
+      if (double(cs[j].normalImpulse[p]) + change < 0.0) return false;
+      applied[j][p] = float(change);
+    }
+  }
+  // Both answers within the sweep: the motors' change and the contacts' to it (the tree's to both
+  // follows in its solve), so that a sweep, the last one too, does not end with the motors driving
+  // the bodies into the contacts.
+  largest = applyMotorChanges(bodies, coupling.joints, motors, Sp, d);
+  for (uint32_t j = 0; j < coupling.contactCount; ++j) {
+    if (system.rowOf[j] < 0) continue;
+    ContactConstraint& c = cs[j];
+    for (int p = 0; p < c.count; ++p) c.normalImpulse[p] += applied[j][p];
+    Vec3 va = bodies.v[c.a], wa = bodies.w[c.a], vb = bodies.v[c.b], wb = bodies.w[c.b];
+    applyNormalChange(c, applied[j], va, wa, vb, wb);
+    storeVelocities(bodies, c, va, wa, vb, wb);
+  }
   return true;
 }
 

@@ -87,4 +87,15 @@ inline constexpr float kJointCoupledRatioFactor = 2.0f;
 bool jointsCarryContacts(const BodyStore& bodies, const JointCoupling& coupling, const ContactConstraint* cs,
                          const ChainLink* links, uint32_t n, float ratio);
 
+/// A sweep's motors solved with the island's contacts answering them: after the contacts' rounds
+/// settled on `system`'s factor (rows A through the tree), the motors' system through the tree and
+/// the contacts, S' = S − Cᵀ A⁺ C (C: the contact rows under each motor's push), so that a servo
+/// pressing its hand on a crate on the ground meets the crate's answer within the sweep: solved
+/// with S alone it drives the hand on at its speed each sweep and reaches its force bound a few
+/// N m s a step. False (nothing applied: solve with solveTreeMotors): no motors, no contacts
+/// factored, S' not positive definite, or the contacts' answer would pull on a point (the motors
+/// draw the bodies apart; the contacts would let go). `largest` as solveTreeMotors returns it.
+bool solveMotorsThroughContacts(BodyStore& bodies, const JointCoupling& coupling, ContactConstraint* cs,
+                                const ChainLink* links, const DenseNormalSystem& system, bool useBias, float& largest);
+
 }  // namespace haif

@@ -104,12 +104,10 @@ double motorsTakeBack(const TreeMotors& motors, const double* rowVelocity) {
   return taken;
 }
 
-float solveTreeMotors(BodyStore& bodies, JointConstraint* js, const TreeMotors& motors, bool useBias) {
+void motorChanges(const BodyStore& bodies, const JointConstraint* js, const TreeMotors& motors, const double* S,
+                  const double* L, bool useBias, double* d) {
   const uint32_t m = motors.count;
-  if (m == 0) return 0.0f;
-  const double* S = motors.system.data();
-  const double* L = S + size_t(m) * m;
-  double rhs[kMaxTreeMotors], d[kMaxTreeMotors];
+  double rhs[kMaxTreeMotors];
   auto velocity = [&](uint32_t body, bool angular) -> Vec3 {
     if (body == kWorldBody) return Vec3::Zero();
     return angular ? bodies.w[body] : bodies.v[body];
@@ -150,6 +148,11 @@ float solveTreeMotors(BodyStore& bodies, JointConstraint* js, const TreeMotors& 
       for (uint32_t b = 0; b < m; ++b) v -= S[a * m + b] * d[b];
       d[a] = bounded(a, d[a] + v / S[a * m + a]);
     }
+}
+
+float applyMotorChanges(BodyStore& bodies, JointConstraint* js, const TreeMotors& motors, const double* S,
+                        const double* d) {
+  const uint32_t m = motors.count;
   float largest = 0.0f;
   for (uint32_t a = 0; a < m; ++a) {
     JointConstraint& c = js[motors.joint[a]];
@@ -168,5 +171,17 @@ float solveTreeMotors(BodyStore& bodies, JointConstraint* js, const TreeMotors& 
   }
   return largest;
 }
+
+float solveTreeMotors(BodyStore& bodies, JointConstraint* js, const TreeMotors& motors, bool useBias) {
+  const uint32_t m = motors.count;
+  if (m == 0) return 0.0f;
+  const double* S = motors.system.data();
+  const double* L = S + size_t(m) * m;
+  double d[kMaxTreeMotors];
+  motorChanges(bodies, js, motors, S, L, useBias, d);
+  return applyMotorChanges(bodies, js, motors, S, d);
+}
+
+bool choleskyFactor(double* s, uint32_t m) { return cholesky(s, m); }
 
 }  // namespace haif

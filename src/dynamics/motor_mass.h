@@ -45,6 +45,18 @@ void prepareTreeMotors(JointConstraint* js, uint32_t n, JointTree& tree, TreeMot
 /// hard this step, and the bodies it drives are no lighter for it). Zero when `motors` is empty.
 double motorsTakeBack(const TreeMotors& motors, const double* rowVelocity);
 
+/// The motors' impulse changes d for one sweep, against the system S (m × m, row-major) and its
+/// Cholesky factor L: S d = −(J v + b) at the bodies' velocities, projected onto the force bounds.
+void motorChanges(const BodyStore& bodies, const JointConstraint* js, const TreeMotors& motors, const double* S,
+                  const double* L, bool useBias, double* d);
+/// Adds d to the motors' impulses and applies it to their bodies; returns the largest velocity change
+/// asked of a motor row (|d| S_aa).
+float applyMotorChanges(BodyStore& bodies, JointConstraint* js, const TreeMotors& motors, const double* S,
+                        const double* d);
+/// In-place Cholesky factor of an SPD m × m matrix (row-major, lower triangle); false when not
+/// positive definite.
+bool choleskyFactor(double* s, uint32_t m);
+
 /// One sweep's motors: the impulses that bring every motor to its speed once the tree answers
 /// (projected onto their force bounds), applied to the motors' bodies. The tree's solve must follow.
 /// Returns the largest velocity change asked of a motor row.

@@ -67,6 +67,7 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias, bool restartDirection, 
   ContactConstraint* cs = constraints_.data() + isl.firstContact;
   const float omega = settings_.contact.omega;
   SweepResult r;
+  bool coupledSettled = false;  // solved through the joints, the rounds settled on the system's factor
   if (isChain_[k]) {
     // Contacts out of reach follow the chain (moveOutOfReachToTail), swept as usual.
     const uint32_t chained = isl.contactCount - tailOf(k);
@@ -76,8 +77,10 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias, bool restartDirection, 
     } else {
       const JointCoupling coupling = isChain_[k] == kJointCoupledSolve ? jointCouplingOf(k) : JointCoupling{};
       DenseNormalSystem& system = denseSystems_[denseOf_[k]];
+      const int unsettled = system.unsettledSweeps;
       r = solveSmallIslandIteration(bodies_, cs, links, chained, omega, useBias, system,
                                     coupling.tree ? &coupling : nullptr);
+      coupledSettled = coupling.tree && system.unsettledSweeps == unsettled && !system.jointsUnsound;
       if (system.jointsUnsound) isChain_[k] = 0;  // the joints cannot carry the rows: swept this step
       // Rounds that do not settle twice in a step will not: they factored the system kChainRounds
       // times a sweep only to fall back on the manifolds' passes (a 20 t ball among 250 kg bricks,
@@ -108,9 +111,15 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias, bool restartDirection, 
   }
   if (isl.jointCount > 0) {
     JointTree* tree = settings_.joints.treeSolve ? &jointTrees_[k] : nullptr;
-    // Servos through the tree, which answers them in its solve just after (dynamics/motor_mass.h).
-    if (tree) r.residual = std::max(r.residual, solveTreeMotors(bodies_, jointConstraints_.data() + isl.firstJoint,
-                                                                treeMotors_[k], useBias));
+    // Servos through the tree, which answers them in its solve just after (dynamics/motor_mass.h);
+    // solved through the joints, through the contacts too.
+    if (tree) {
+      float motors = 0.0f;
+      if (!coupledSettled || !solveMotorsThroughContacts(bodies_, jointCouplingOf(k), cs, chainLinks_.data() + isl.firstContact,
+                                                         denseSystems_[denseOf_[k]], useBias, motors))
+        motors = solveTreeMotors(bodies_, jointConstraints_.data() + isl.firstJoint, treeMotors_[k], useBias);
+      r.residual = std::max(r.residual, motors);
+    }
     r.residual = std::max(r.residual, solveJointIteration(bodies_, jointConstraints_.data() + isl.firstJoint,
                                                           isl.jointCount, tree, omega, useBias));
   }
