@@ -1,10 +1,13 @@
 // Helpers shared by the scene tests.
 #pragma once
 
+#include "haif/world.h"
+#include "scene/build_world.h"
 #include "scene/scene_loader.h"
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <string>
 
 namespace haif::test {
@@ -17,6 +20,18 @@ inline SceneDesc loadReferenceScene(const std::string& name) {
   std::string error;
   EXPECT_TRUE(loadSceneFile(sourceDir() + "/scenes/" + name, scene, error)) << error;
   return scene;
+}
+
+/// The scene's world, solved at `iterations` a step (fixed); null (a failure reported) when it cannot
+/// be built.
+inline std::unique_ptr<World> worldAt(const SceneDesc& scene, int iterations) {
+  WorldSettings s = scene.settings.world;
+  s.iterations = iterations;
+  auto w = std::make_unique<World>(s);
+  std::string error;
+  if (buildWorld(scene, *w, error)) return w;
+  ADD_FAILURE() << scene.name << ": " << error;
+  return nullptr;
 }
 
 /// Parses `text` as "mem/test.json", expecting success.

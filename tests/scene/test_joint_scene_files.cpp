@@ -16,17 +16,6 @@ struct SceneRun {
   bool finite = true;
 };
 
-// The scene's world, solved at `iterations` a step; null (a failure reported) when it cannot be built.
-std::unique_ptr<World> worldAt(const SceneDesc& scene, int iterations) {
-  WorldSettings s = scene.settings.world;
-  s.iterations = iterations;
-  auto w = std::make_unique<World>(s);
-  std::string error;
-  if (buildWorld(scene, *w, error)) return w;
-  ADD_FAILURE() << scene.name << ": " << error;
-  return nullptr;
-}
-
 SceneRun runScene(const SceneDesc& scene, int steps, int iterations) {
   SceneRun r;
   const std::unique_ptr<World> world = worldAt(scene, iterations);

@@ -6,9 +6,7 @@
 // minute; a mast of six servos holding a load threw it about at 4 and 10.
 #include "scene_test_util.h"
 
-#include "haif/iteration_controller.h"
 #include "haif/world.h"
-#include "scene/build_world.h"
 
 #include <algorithm>
 #include <cmath>
@@ -24,13 +22,20 @@ struct ArmRun {
   uint32_t speedLimited = 0;  // bodies slowed to the speed bound, summed over the run
 };
 
+// The body of `world` of the given mass (the last one; 0 if none): the scene files name bodies, but
+// a ground generator adds one before them.
+uint32_t bodyOfMass(const World& world, float mass) {
+  uint32_t found = 0;
+  for (uint32_t i = 0; i < world.bodyCount(); ++i)
+    if (world.bodies().mass[i] == mass) found = i;
+  return found;
+}
+
 ArmRun runRobotArm(int iterations, int steps) {
   const SceneDesc scene = loadReferenceScene("robot_arm.json");
-  World w(scene.settings.world);
-  std::string error;
-  EXPECT_TRUE(buildWorld(scene, w, error)) << error;
-  w.settings().iterations = iterations;
-  w.setController(std::make_unique<FixedController>(iterations));
+  const std::unique_ptr<World> world = worldAt(scene, iterations);
+  if (!world) return {};
+  World& w = *world;
   uint32_t hand = 0;
   for (size_t i = 0; i < scene.bodies.size(); ++i)
     if (scene.bodies[i].name == "hand") hand = uint32_t(i);
@@ -83,16 +88,12 @@ std::string servoMast() {
 // The load's path over `steps` steps at a fixed iteration count, and the speed-bound events.
 std::vector<Vec3> swayMast(int iterations, int steps, uint32_t& speedLimited) {
   const SceneDesc scene = parseOk(servoMast());
-  World w(scene.settings.world);
-  std::string error;
-  EXPECT_TRUE(buildWorld(scene, w, error)) << error;
-  w.settings().iterations = iterations;
-  w.setController(std::make_unique<FixedController>(iterations));
-  uint32_t load = 0;  // the 20 kg body (the ground generator adds a body too)
-  for (uint32_t i = 0; i < w.bodyCount(); ++i)
-    if (w.bodies().mass[i] == 20.0f) load = i;
   std::vector<Vec3> path;
   speedLimited = 0;
+  const std::unique_ptr<World> world = worldAt(scene, iterations);
+  if (!world) return path;
+  World& w = *world;
+  const uint32_t load = bodyOfMass(w, 20.0f);
   for (int s = 0; s < steps; ++s) {
     w.step();
     path.push_back(w.bodies().xf[load].p);
@@ -153,15 +154,11 @@ struct PressRun {
 
 PressRun runPress(int iterations, int steps) {
   const SceneDesc scene = parseOk(servoPress());
-  World w(scene.settings.world);
-  std::string error;
-  EXPECT_TRUE(buildWorld(scene, w, error)) << error;
-  w.settings().iterations = iterations;
-  w.setController(std::make_unique<FixedController>(iterations));
-  uint32_t plate = 0;  // the 2 kg body (the ground generator adds a body too)
-  for (uint32_t i = 0; i < w.bodyCount(); ++i)
-    if (w.bodies().mass[i] == 2.0f) plate = i;
   PressRun run;
+  const std::unique_ptr<World> world = worldAt(scene, iterations);
+  if (!world) return run;
+  World& w = *world;
+  const uint32_t plate = bodyOfMass(w, 2.0f);
   for (int s = 0; s < steps; ++s) {
     w.step();
     for (const Contact& c : w.contacts()) run.deepest = std::max(run.deepest, c.manifold.deepest());
@@ -187,12 +184,9 @@ TEST(ServoArm, AServoPressingAStackDoesNotPushItsCratesIntoEachOther) {
 // crate sank 24 cm into the one below (3.9 cm with the island solved through its joints, 1 cm with the
 // motors solved through the contacts too).
 TEST(ServoArm, TheRobotArmsHandDoesNotPushACrateThroughTheOneBelow) {
-  const SceneDesc scene = loadReferenceScene("robot_arm.json");
-  World w(scene.settings.world);
-  std::string error;
-  ASSERT_TRUE(buildWorld(scene, w, error)) << error;
-  w.settings().iterations = 4;
-  w.setController(std::make_unique<FixedController>(4));
+  const std::unique_ptr<World> world = worldAt(loadReferenceScene("robot_arm.json"), 4);
+  ASSERT_TRUE(world);
+  World& w = *world;
   float deepest = 0.0f;
   for (int s = 0; s < 150; ++s) {
     w.step();
