@@ -33,12 +33,11 @@ inline GaussF loadLanes(const float* x) {
   std::memcpy(&v, x, sizeof(v));
   return v;
 }
-inline bool anyLane(GaussI m) {
-  uint64_t w[kGaussLanes / 2];
-  std::memcpy(w, &m, sizeof(w));
-  uint64_t any = 0;
-  for (const uint64_t x : w) any |= x;
-  return any != 0;
+// Bit k set where lane k of the mask is.
+inline uint32_t laneBits(GaussI m) {
+  uint32_t bits = 0;
+  for (int k = 0; k < kGaussLanes; ++k) bits |= uint32_t(m[k] != 0) << k;
+  return bits;
 }
 // A polyhedron's vertices by coordinate, kGaussLanes to a vector: the separating-axis tests project
 // every vertex on each axis they try (one vertex after another, each min waiting on the last, that
@@ -64,10 +63,18 @@ struct VertexLanes {
     std::memcpy(&pz, z + j, sizeof(pz));
     return px * d.x() + py * d.y() + pz * d.z();
   }
+  // Halves folded onto each other: three vector mins, not seven lane extractions.
   static float least(GaussF v) {
-    float r = v[0];
-    for (int k = 1; k < kGaussLanes; ++k) r = std::min(r, v[k]);
-    return r;
+    static_assert(kGaussLanes == 8, "the folds below are written for 8 lanes");
+    using Half = float __attribute__((vector_size(kGaussLanes / 2 * sizeof(float))));
+    Half h = __builtin_shufflevector(v, v, 0, 1, 2, 3);
+    const Half g = __builtin_shufflevector(v, v, 4, 5, 6, 7);
+    h = g < h ? g : h;
+    Half q = __builtin_shufflevector(h, h, 2, 3, 0, 1);
+    h = q < h ? q : h;
+    q = __builtin_shufflevector(h, h, 1, 0, 3, 2);
+    h = q < h ? q : h;
+    return h[0];
   }
   float minDot(const Vec3& d) const {
     if (lanes == 0) return poly->minDot(d);
@@ -203,39 +210,58 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
     const Vec3 nB = faceB >= 0 ? Vec3(R * B.faces[faceB].normal) : Vec3::Zero();
     const float oA = faceA >= 0 ? A.faces[faceA].offset : 0.0f;
     const float oB = faceB >= 0 ? B.faces[faceB].offset + t.dot(nB) : 0.0f;
-    auto nearB = [&](const Vec3& p, const Vec3& q) {  // an edge of A near B
-      return boxB.overlaps(Aabb{p.cwiseMin(q), p.cwiseMax(q)}) &&
-             std::max(nA.dot(p), nA.dot(q)) >= oA + sepA - grow && std::min(nB.dot(p), nB.dot(q)) <= oB + grow;
+    // Which of the other shape's limits each vertex lies beyond (its box's six sides and the slab's
+    // two): an edge is near the other shape unless both its ends lie beyond one limit. Read per vertex
+    // once, not per edge (each vertex ends three or more edges).
+    auto beyond = [](const Aabb& box, float d1, float lim1, float d2, float lim2, const Vec3& p) {
+      return uint32_t(p.x() < box.lo.x()) | uint32_t(p.x() > box.hi.x()) << 1 | uint32_t(p.y() < box.lo.y()) << 2 |
+             uint32_t(p.y() > box.hi.y()) << 3 | uint32_t(p.z() < box.lo.z()) << 4 | uint32_t(p.z() > box.hi.z()) << 5 |
+             uint32_t(d1 > lim1) << 6 | uint32_t(d2 < lim2) << 7;
     };
-    auto nearA = [&](const Vec3& p, const Vec3& q) {  // an edge of B near A
-      return boxA.overlaps(Aabb{p.cwiseMin(q), p.cwiseMax(q)}) &&
-             std::min(nA.dot(p), nA.dot(q)) <= oA + grow && std::max(nB.dot(p), nB.dot(q)) >= oB + sepB - grow;
+    uint8_t offB[kMaxGaussEdges];  // B's vertices beyond A's limits
+    for (int v = 0; v < B.numVerts; ++v)
+      offB[v] = uint8_t(beyond(boxA, nA.dot(vb[v]), oA + grow, nB.dot(vb[v]), oB + sepB - grow, vb[v]));
+    // A's vertices beyond B's limits (A's slab is its face's, B's is the other way round); a hull too
+    // large for the array reads each edge's ends as it comes.
+    const bool flagsA = A.numVerts <= kMaxGaussEdges;
+    uint8_t offA[kMaxGaussEdges];
+    auto offOfA = [&](const Vec3& p) {
+      return beyond(boxB, -nA.dot(p), -(oA + sepA - grow), -nB.dot(p), -(oB + grow), p);
+    };
+    for (int v = 0; flagsA && v < A.numVerts; ++v) offA[v] = uint8_t(offOfA(A.verts[v]));
+    auto nearB = [&](int i) {  // an edge of A near B
+      const uint32_t a0 = A.edges[i].first, a1 = A.edges[i].second;
+      return flagsA ? (offA[a0] & offA[a1]) == 0 : (offOfA(A.verts[a0]) & offOfA(A.verts[a1])) == 0;
     };
     // B's edges near A, each with its two face normals negated (the Gauss map of -B).
+    // The near edges' indices are gathered first without a branch (whether an edge is near follows no
+    // pattern: a mispredicted branch an edge cost more than the test), then only they are read.
     GaussArcs gb;
     int kept = 0;
     for (int j = 0; j < B.numEdges; ++j) {
+      gb.edge[kept] = j;
+      kept += (offB[B.edges[j].first] & offB[B.edges[j].second]) == 0;
+    }
+    for (int e = 0; e < kept; ++e) {
+      const int j = gb.edge[e];
       const Vec3& q0 = vb[B.edges[j].first];
-      const Vec3& q1 = vb[B.edges[j].second];
-      if (!nearA(q0, q1)) continue;
       const Vec3 c = -(R * B.faces[B.edgeFaces[j].first].normal);
       const Vec3 d = -(R * B.faces[B.edgeFaces[j].second].normal);
       const Vec3 dxc = d.cross(c);
       for (int k = 0; k < 3; ++k) {
-        gb.c[k][kept] = c[k];
-        gb.d[k][kept] = d[k];
-        gb.dxc[k][kept] = dxc[k];
+        gb.c[k][e] = c[k];
+        gb.d[k][e] = d[k];
+        gb.dxc[k][e] = dxc[k];
       }
-      gb.p[kept] = q0;
-      gb.dir[kept] = R * (B.verts[B.edges[j].second] - B.verts[B.edges[j].first]);  // one rounding, not q1 - q0
-      gb.edge[kept++] = j;
+      gb.p[e] = q0;
+      gb.dir[e] = R * (B.verts[B.edges[j].second] - B.verts[B.edges[j].first]);  // one rounding, not q1 - q0
     }
     const int lanesB = (kept + kGaussLanes - 1) / kGaussLanes * kGaussLanes;
     for (int j = kept; j < lanesB; ++j)
       for (int k = 0; k < 3; ++k) gb.c[k][j] = gb.d[k][j] = gb.dxc[k][j] = 0.0f;
-    for (int i = 0; i < A.numEdges && kept > 0; ++i) {
+    // A's edge i against the kept edges of B; false when an axis separates beyond the margin.
+    auto tryEdgeA = [&](int i) {
       const Vec3 pa = A.verts[A.edges[i].first], pa1 = A.verts[A.edges[i].second];
-      if (!nearB(pa, pa1)) continue;
       const Vec3& a = A.faces[A.edgeFaces[i].first].normal;
       const Vec3& b = A.faces[A.edgeFaces[i].second].normal;
       const Vec3 da = pa1 - pa;
@@ -247,10 +273,8 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
         const GaussF cba = dot(gb.c, bxa), dba = dot(gb.d, bxa), adc = dot(gb.dxc, a), bdc = dot(gb.dxc, b);
         const GaussF zero = {};
         const GaussI cross = (cba * dba < zero) & (adc * bdc < zero) & (cba * bdc > zero);
-        if (!anyLane(cross)) continue;
-        for (int lane = 0; lane < kGaussLanes; ++lane) {
-          if (!cross[lane]) continue;
-          const int k = j0 + lane;
+        for (uint32_t lanes = laneBits(cross); lanes != 0; lanes &= lanes - 1) {
+          const int k = j0 + __builtin_ctz(lanes);
           Vec3 L = da.cross(gb.dir[k]);
           const float l2 = L.squaredNorm();
           if (l2 < 1e-8f * da.squaredNorm() * gb.dir[k].squaredNorm()) continue;  // parallel edges
@@ -268,6 +292,20 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
           if (s > sepE) { sepE = s; edgeA = i; edgeB = gb.edge[k]; edgeAxis = L; }
         }
       }
+      return true;
+    };
+    // A's near edges gathered a chunk at a time, the same way as B's.
+    constexpr int kChunk = 64;
+    int nearEdgesA[kChunk];
+    for (int i0 = 0; i0 < A.numEdges && kept > 0; i0 += kChunk) {
+      const int i1 = std::min(A.numEdges, i0 + kChunk);
+      int nearCount = 0;
+      for (int i = i0; i < i1; ++i) {
+        nearEdgesA[nearCount] = i;
+        nearCount += nearB(i);
+      }
+      for (int e = 0; e < nearCount; ++e)
+        if (!tryEdgeA(nearEdgesA[e])) return false;
     }
     return true;
   };
