@@ -168,6 +168,13 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
       }
       const Vec3& a = P.verts[P.edges[k].first];
       const Vec3& b = P.verts[P.edges[k].second];
+      // The edge lies in the ball about its midpoint through its ends: the core is no nearer it
+      // than to that ball. An edge beyond the best so far (with room for rounding) cannot win.
+      if (best < 1e30f) {
+        const Vec3 mid = 0.5f * (a + b);
+        const float toMid = isSeg ? (mid - closestOnSegment(mid, c0, c1)).norm() : (mid - c0).norm();
+        if (toMid - 0.5f * (b - a).norm() > (cut + kNearTie) * 1.0001f + 1e-6f) continue;
+      }
       Vec3 qc, qp;
       if (isSeg) {
         float s, u;
