@@ -15,7 +15,7 @@ namespace {
 constexpr float kStacked = 0.5f;
 /// A pair is collided again when its linear read of the step's end is this much (m) past its target.
 constexpr float kCrushSlack = 0.005f;
-/// Excess depth (m) below which a pair is not moved: rounding after a pair was moved to its target.
+/// Excess depth (m) below which a pair is never moved: rounding after a pair was moved to its target.
 constexpr float kLeastMove = 1e-4f;
 /// Added to a depth bound before it decides that a pair need not be collided: the rounding of the
 /// collision that found the depth (m).
@@ -49,10 +49,14 @@ float TurnProjection::target(uint32_t c) const {
                   start - settings_.crushRecover * scale);
 }
 
+float TurnProjection::leastMove(const ContactEdge& e) const {
+  return std::max(kLeastMove, settings_.leastMove * toleranceScale(e));
+}
+
 bool TurnProjection::mayExceed(uint32_t c) const {
   const ContactEdge& e = in_.edges[c];
   const float bound = known_[c] + (relativeShift(e.a, e.b) - knownShift_[c]).norm() + kBoundRounding;
-  return bound > target(c) + kLeastMove;
+  return bound > target(c) + leastMove(e);
 }
 
 void TurnProjection::noteDepth(uint32_t c, float depth, const Vec3& shift) {
@@ -339,7 +343,7 @@ bool TurnProjection::resolveRound() {
     collidedAt_[c] = clock_;
     // The target is never under `keep`; a pair a later round finds where the last one left it stays.
     const float excess = depth - target(c);
-    if (!(excess > kLeastMove)) continue;
+    if (!(excess > leastMove(k))) continue;
     float ia = movable(k.a) ? bodies.invMass[k.a] : 0.0f;
     float ib = movable(k.b) ? bodies.invMass[k.b] : 0.0f;
     // One on top of the other: the lower one was settled already (its pairs came first), and only

@@ -111,6 +111,33 @@ TEST(TurnProjection, LiftsATurnedBoxOutOfTheGroundToTheKeepDepth) {
   EXPECT_EQ(s.bodies.xf[ground].p, Vec3(0, -0.5f, 0));
 }
 
+// Past its target by less than the least move, a pair is left where it is (moving it would bring
+// its neighbours into the round for a fraction of a millimetre); past it by more, it is moved to
+// the target. With no least move but the rounding, the small excess is moved too.
+TEST(TurnProjection, APairPastItsTargetByLessThanTheLeastMoveIsLeft) {
+  const TurnProjectionSettings d;
+  ASSERT_GT(d.leastMove, 1e-4f);
+  TurnProjectionSettings roundingOnly = d;
+  roundingOnly.leastMove = 0.0f;
+  struct Case {
+    float past;  // m past the keep depth at the step's end
+    const TurnProjectionSettings* settings;
+    bool moved;
+  };
+  for (const Case& k : {Case{0.5f * d.leastMove, &d, false}, Case{3.0f * d.leastMove, &d, true},
+                        Case{0.5f * d.leastMove, &roundingOnly, true}}) {
+    Scene s;
+    const uint32_t ground = s.add(BodyKind::Static, Shape::box(Vec3(10, 0.5f, 10)), Vec3(0, -0.5f, 0), 0);
+    const float y = 0.5f - d.keep - k.past;
+    const uint32_t box = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0, y, 0), 2);
+    s.pair(ground, box);
+    s.bodies.w[box] = Vec3(0, 0, 12.0f);  // 0.2 rad a step: its pairs are collided again
+    EXPECT_EQ(s.apply(*k.settings), k.moved ? 1u : 0u) << k.past;
+    EXPECT_EQ(s.projection.collisions(), k.moved ? 2u : 1u) << k.past;  // a moved pair is checked again
+    EXPECT_NEAR(s.bodies.xf[box].p.y(), k.moved ? 0.5f - d.keep : y, 1e-5f) << k.past;
+  }
+}
+
 // A spinning box 0.1 m into the ground, with a resting box 3 cm to its side: lifted out, it brings
 // its pair with that box into the round, but their boxes are still 3 cm apart, which says the pair
 // is apart without a collision. Only the ground pair is collided, before and after the lift (2);
