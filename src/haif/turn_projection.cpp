@@ -15,7 +15,7 @@ namespace {
 constexpr float kStacked = 0.5f;
 /// A pair is collided again when its linear read of the step's end is this much (m) past its target.
 constexpr float kCrushSlack = 0.005f;
-/// Excess depth (m) below which a pair is never moved: rounding after a pair was moved to its target.
+/// The least excess (m) moved at any pair scale: the rounding after a pair was moved to its target.
 constexpr float kLeastMove = 1e-4f;
 /// Added to a depth bound before it decides that a pair need not be collided: the rounding of the
 /// collision that found the depth (m).

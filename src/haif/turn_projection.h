@@ -67,7 +67,8 @@ struct TurnProjectionSettings {
   float crushKeep = 0.03f;
   /// Depth (m) such a pair loses a step beyond what the step added, positions only (1.2 m/s).
   float crushRecover = 0.02f;
-  /// Excess over the target (m) below which a pair is neither moved nor collided again: a move
+  /// Excess over the target (m) a pair must pass to be moved, and that its depth bound must allow
+  /// for it to be collided again after a move (a first collision is not gated): a move
   /// brings the body's neighbours into the round, and in a jam the same pairs came back every round
   /// by fractions of a millimetre (`swept_pit`: ~185 pairs moved in each of the six rounds, 95 % of
   /// them moved already that step). Scaled with the pair's tolerances, as the target is.
