@@ -48,6 +48,18 @@ struct StripLayout {
   uint32_t criticalRows() const;
 };
 
+/// A phase's strips [first, last) (counted within the phase: strip 2i + phase is its i-th) that one
+/// of its tasks runs. A phase of `strips` strips on `threads` threads has stripGroups(..) tasks, one
+/// per thread where there are strips enough, of contiguous strips whose counts differ by one at most:
+/// no thread runs more strips than the phase needs of it.
+struct StripGroup {
+  uint32_t first, last;
+};
+inline uint32_t stripGroups(uint32_t strips, int threads) { return std::min(strips, uint32_t(std::max(1, threads))); }
+inline StripGroup stripGroup(uint32_t g, uint32_t groups, uint32_t strips) {
+  return {g * strips / groups, (g + 1) * strips / groups};
+}
+
 class IslandSplitter {
  public:
   /// Regroups island `k`'s contacts in `set.contacts` strip by strip (keeping their order inside a

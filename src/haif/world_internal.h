@@ -114,9 +114,12 @@ void World::forEachIslandTimed(First&& first, Second&& second, bool firstIsSweep
 // island runs its strips in two parallel phases, even strips then odd ones, then its tail (see
 // island_split.h), and merges in strip order, so sums do not depend on the thread count. Any other
 // island is one range on the calling thread.
-// Where a phase has at least twice as many strips as threads, a task takes two of them (strips of a
-// phase share no dynamic body) and runs pair(b1, e1, b2, e2, r1, r2) on both ranges, writing each
-// one's result: the sweep interleaves them (solveIterationPair).
+// A phase's strips are cut into one contiguous group per thread (fewer where the phase has fewer
+// strips), and a group runs its strips two at a time, pair(b1, e1, b2, e2, r1, r2) on both ranges,
+// writing each one's result: the sweep interleaves them (solveIterationPair). Strips of a phase share
+// no dynamic body, so the grouping changes no result. Tasks of two strips each left threads idle
+// wherever their count was odd: 6 strips on 2 threads were 3 tasks, one thread running two of them
+// while the other waited.
 template <class F, class Pair>
 SweepResult World::forEachStrip(uint32_t k, F&& f, Pair&& pair) {
   const int32_t li = layoutOf_[k];
@@ -126,15 +129,17 @@ SweepResult World::forEachStrip(uint32_t k, F&& f, Pair&& pair) {
   SweepResult total;
   for (uint32_t phase = 0; phase < 2; ++phase) {
     const uint32_t strips = (layout.strips + 1 - phase) / 2;  // strips 2i + phase, i < strips
-    const bool paired = strips >= 2 * uint32_t(workerThreads_);
-    const uint32_t tasks = paired ? (strips + 1) / 2 : strips;
-    parallelFor(tasks, 1, [&](uint32_t begin, uint32_t end) {
-      for (uint32_t t = begin; t < end; ++t) {
-        const uint32_t i = paired ? 2 * t : t, s = 2 * i + phase;
-        if (paired && i + 1 < strips) {
-          const uint32_t s2 = s + 2;
+    const uint32_t groups = stripGroups(strips, workerThreads_);
+    parallelFor(groups, 1, [&](uint32_t begin, uint32_t end) {
+      for (uint32_t g = begin; g < end; ++g) {
+        const StripGroup group = stripGroup(g, groups, strips);
+        uint32_t i = group.first;
+        for (; i + 1 < group.last; i += 2) {
+          const uint32_t s = 2 * i + phase, s2 = s + 2;
           pair(layout.start[s], layout.start[s + 1], layout.start[s2], layout.start[s2 + 1], res[s], res[s2]);
-        } else {
+        }
+        if (i < group.last) {
+          const uint32_t s = 2 * i + phase;
           res[s] = f(layout.start[s], layout.start[s + 1]);
         }
       }

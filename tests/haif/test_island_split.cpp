@@ -186,6 +186,29 @@ TEST(IslandSplit, BodiesComeStripByStripAndTheImmovableOnesOnce) {
   EXPECT_EQ(splitter.immovableBodies(), std::vector<uint32_t>{ground});
 }
 
+// A phase's strips are dealt to its tasks in contiguous groups: every strip once, one group per
+// thread where there are strips enough, and no group more than one strip larger than another (3
+// tasks of two strips on 2 threads left one thread idle for a third of the phase).
+TEST(IslandSplit, APhasesStripsAreDealtEvenlyToOneGroupPerThread) {
+  for (uint32_t strips = 1; strips <= kMaxStrips / 2; ++strips)
+    for (int threads = 1; threads <= 16; ++threads) {
+      const uint32_t groups = stripGroups(strips, threads);
+      EXPECT_EQ(groups, std::min(strips, uint32_t(threads))) << strips << " strips, " << threads << " threads";
+      uint32_t next = 0, least = strips, most = 0;
+      for (uint32_t g = 0; g < groups; ++g) {
+        const StripGroup group = stripGroup(g, groups, strips);
+        EXPECT_EQ(group.first, next) << "group " << g << " of " << groups << ", " << strips << " strips";
+        EXPECT_GT(group.last, group.first) << "group " << g << " is empty";
+        next = group.last;
+        least = std::min(least, group.last - group.first);
+        most = std::max(most, group.last - group.first);
+      }
+      EXPECT_EQ(next, strips) << strips << " strips, " << threads << " threads";
+      EXPECT_LE(most - least, 1u) << strips << " strips, " << threads << " threads";
+      EXPECT_EQ(most, (strips + groups - 1) / groups) << strips << " strips, " << threads << " threads";
+    }
+}
+
 TEST(IslandSplit, SameStateForAnyThreadCount) {
   test::expectSameStateForThreadCounts([](int threads) {
     WorldSettings ws;
