@@ -6,6 +6,44 @@
 
 namespace haif {
 
+bool IslandBuilder::sameGraph(const BodyStore& bodies, const ContactEdge* contacts, uint32_t contactCount,
+                              const std::vector<Joint>& joints) {
+  const uint32_t n = static_cast<uint32_t>(bodies.size());
+  bool same = keysValid_ && edgeKeys_.size() == contactCount && bodyKeys_.size() == n && jointKeys_.size() == joints.size();
+  edgeKeys_.resize(contactCount);
+  bodyKeys_.resize(n);
+  jointKeys_.resize(joints.size());
+  // Every key is written, equal or not: the next step compares with this one's.
+  for (uint32_t ci = 0; ci < contactCount; ++ci) {
+    const ContactEdge& c = contacts[ci];
+    const EdgeKey key{c.a, c.b, c.count, c.apart};
+    same = same && edgeKeys_[ci] == key;
+    edgeKeys_[ci] = key;
+  }
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint8_t key = bodyKey(bodies, i);
+    same = same && bodyKeys_[i] == key;
+    bodyKeys_[i] = key;
+  }
+  for (size_t j = 0; j < joints.size(); ++j) {
+    const JointDef& d = joints[j].def;
+    const JointKey key{d.bodyA, d.bodyB, jointRowCount(d), joints[j].broken};
+    same = same && jointKeys_[j] == key;
+    jointKeys_[j] = key;
+  }
+  keysValid_ = true;
+  return same;
+}
+
+void IslandBuilder::refreshCarriers(const BodyStore& bodies, IslandSet& out) const {
+  for (Island& isl : out.islands) {
+    if (isl.carrier == Island::kNoCarrier) continue;
+    isl.carrierV = bodies.v[isl.carrier];
+    isl.carrierW = bodies.w[isl.carrier];
+    isl.carrierAt = bodies.xf[isl.carrier].p;
+  }
+}
+
 void IslandBuilder::uniteContacts(const BodyStore& bodies, const ContactEdge* contacts, uint32_t begin, uint32_t end) {
   uint32_t touching = 0, points = 0;
   for (uint32_t ci = begin; ci < end; ++ci) {

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <random>
 #include <set>
@@ -249,6 +250,117 @@ TEST(IslandBuilder, ConcurrentUnionsGiveTheSameIslandsAtEveryThreadCount) {
       EXPECT_EQ(out.contactPoints, expected.contactPoints);
     }
   }
+}
+
+// Two builds' islands, member for member.
+void expectSameIslands(const IslandSet& got, const IslandSet& want, const char* what) {
+  ASSERT_EQ(got.islands.size(), want.islands.size()) << what;
+  for (size_t k = 0; k < want.islands.size(); ++k) {
+    const Island &g = got.islands[k], &e = want.islands[k];
+    EXPECT_EQ(g.firstBody, e.firstBody) << what << ", island " << k;
+    EXPECT_EQ(g.bodyCount, e.bodyCount) << what << ", island " << k;
+    EXPECT_EQ(g.firstContact, e.firstContact) << what << ", island " << k;
+    EXPECT_EQ(g.contactCount, e.contactCount) << what << ", island " << k;
+    EXPECT_EQ(g.rows, e.rows) << what << ", island " << k;
+    EXPECT_EQ(g.firstJoint, e.firstJoint) << what << ", island " << k;
+    EXPECT_EQ(g.jointCount, e.jointCount) << what << ", island " << k;
+    EXPECT_EQ(g.carrier, e.carrier) << what << ", island " << k;
+    EXPECT_EQ(g.carrierV, e.carrierV) << what << ", island " << k;
+    EXPECT_EQ(g.carrierW, e.carrierW) << what << ", island " << k;
+    EXPECT_EQ(g.carrierAt, e.carrierAt) << what << ", island " << k;
+  }
+  EXPECT_EQ(got.bodies, want.bodies) << what;
+  EXPECT_EQ(got.contacts, want.contacts) << what;
+  EXPECT_EQ(got.joints, want.joints) << what;
+  EXPECT_EQ(got.totalRows, want.totalRows) << what;
+  EXPECT_EQ(got.largestRows, want.largestRows) << what;
+  EXPECT_EQ(got.largestBodies, want.largestBodies) << what;
+  EXPECT_EQ(got.touchingContacts, want.touchingContacts) << what;
+  EXPECT_EQ(got.contactPoints, want.contactPoints) << what;
+}
+
+// A graph equal to the last build's gets the last build's islands again (the callers rearrange the
+// contacts they were given: that must not leak back), with the carriers' motion read anew; any change
+// a build reads (a point count, an apart flag, a body asleep or of another kind, a joint broken, a
+// contact more) builds them afresh. Either way they are what a new builder makes of the same graph.
+TEST(IslandBuilder, AnUnchangedGraphGetsTheLastIslandsAndAChangedOneIsBuiltAfresh) {
+  std::mt19937 rng(11);
+  BodyStore bodies;
+  const uint32_t n = 3000;
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t r = rng() % 50;
+    bodies.add(r == 0 ? BodyKind::Static : r == 1 ? BodyKind::Kinematic : BodyKind::Dynamic, Transform{}, 1.0f,
+               Mat3::Identity());
+  }
+  std::vector<ContactEdge> edges(6000);
+  for (ContactEdge& e : edges) {
+    e.a = uint32_t(rng() % n);
+    e.b = rng() % 8 == 0 ? uint32_t(rng() % n) : std::min(n - 1, e.a + 1 + uint32_t(rng() % 3));
+    e.count = uint8_t(rng() % 3 == 0 ? 0 : 1 + rng() % 4);
+  }
+  std::vector<Joint> joints(40);
+  for (Joint& j : joints) {
+    j.def.type = rng() % 2 ? JointType::Ball : JointType::Hinge;
+    j.def.bodyA = uint32_t(rng() % n);
+    j.def.bodyB = uint32_t(rng() % n);
+  }
+  IslandBuilder kept;
+  IslandSet out;
+  auto expectFresh = [&](const char* what, bool reused) {
+    // What the caller does with the islands between steps (the solve order sorts each island's contacts).
+    std::reverse(out.contacts.begin(), out.contacts.end());
+    kept.build(bodies, edges.data(), uint32_t(edges.size()), joints, out);
+    EXPECT_EQ(kept.reused(), reused) << what;
+    IslandBuilder fresh;
+    IslandSet want;
+    fresh.build(bodies, edges.data(), uint32_t(edges.size()), joints, want);
+    EXPECT_FALSE(fresh.reused()) << what;
+    expectSameIslands(out, want, what);
+  };
+  kept.build(bodies, edges.data(), uint32_t(edges.size()), joints, out);
+  EXPECT_FALSE(kept.reused()) << "a first build has nothing to reuse";
+  expectFresh("the same graph", true);
+  uint32_t carrier = 0;
+  for (const Island& isl : out.islands)
+    if (isl.carrier != Island::kNoCarrier) carrier = isl.carrier;
+  ASSERT_EQ(bodies.kind[carrier], BodyKind::Kinematic) << "the graph has an island on a kinematic body";
+  bodies.v[carrier] = Vec3(1.0f, 2.0f, 3.0f);
+  bodies.w[carrier] = Vec3(0.0f, 0.5f, 0.0f);
+  bodies.xf[carrier].p = Vec3(4.0f, 5.0f, 6.0f);
+  expectFresh("a carrier moving", true);
+
+  auto touchingDynamicEdge = [&](bool touching) {
+    for (uint32_t ci = 0;; ++ci)
+      if ((edges[ci].count > 0) == touching && bodies.isAwakeDynamic(edges[ci].a) && bodies.isAwakeDynamic(edges[ci].b) &&
+          edges[ci].a != edges[ci].b)
+        return ci;
+  };
+  edges[touchingDynamicEdge(false)].count = 1;
+  expectFresh("a contact made", false);
+  expectFresh("the same graph again", true);
+  const uint32_t pressed = touchingDynamicEdge(true);
+  edges[pressed].count = uint8_t(edges[pressed].count % 4 + 1);
+  expectFresh("a point more or fewer", false);
+  edges[touchingDynamicEdge(true)].apart = true;
+  expectFresh("a contact apart", false);
+  bodies.asleep[edges[touchingDynamicEdge(true)].a] = 1;
+  expectFresh("a body asleep", false);
+  bodies.kind[edges[touchingDynamicEdge(true)].b] = BodyKind::Kinematic;
+  expectFresh("a body made kinematic", false);
+  for (Joint& j : joints)
+    if (!j.broken && bodies.isAwakeDynamic(j.def.bodyA)) {
+      j.broken = true;
+      break;
+    }
+  expectFresh("a joint broken", false);
+  joints[0].def.type = joints[0].def.type == JointType::Ball ? JointType::Hinge : JointType::Ball;
+  expectFresh("a joint of another type (other rows)", false);
+  edges.push_back(ContactEdge{});
+  edges.back().a = edges[pressed].a;
+  edges.back().b = uint32_t(rng() % n);
+  edges.back().count = 2;
+  expectFresh("a contact more", false);
+  expectFresh("the same graph at last", true);
 }
 
 }  // namespace
