@@ -154,6 +154,7 @@ class World {
   /// Returns how many were moved.
   uint32_t moveOutOfReachToTail(uint32_t k, uint64_t* keys);
   uint32_t tailOf(uint32_t k) const { return order_.tail[k]; }
+  bool sortsAsLastStep(uint32_t k) const;
   /// How far (m) two bodies fall towards each other in a step: g dt². Taken once per pass, not per
   /// contact (a square root).
   float fallOfAStep() const { return settings_.gravity.norm() * settings_.dt * settings_.dt; }
@@ -267,6 +268,12 @@ class World {
     std::vector<uint32_t> placed;           // per body: supports listed so far; 0 once its load is divided
     std::vector<uint32_t> supportContacts;  // the supports of each island's bodies, body by body
     std::vector<uint32_t> tail;        // per island: contacts at the end of its order that cannot touch this step
+    // Last step's order, for islands that are last step's (IslandBuilder::reused): an island whose
+    // contacts still sort as they did, with the same tail, takes that order and its lane batches again.
+    std::vector<uint32_t> sorted, batched;  // islands_.contacts after the sort, and after the batching
+    std::vector<uint32_t> tailBefore;       // per island: the tail the sort was made with
+    std::vector<uint8_t> kept;              // per island, this step: its order is last step's
+    uint64_t sortedStep = ~0ull, batchedStep = ~0ull;  // the steps they were made in
   } order_;
   std::vector<ContactConstraint> constraints_;
   std::vector<ChainLink> chainLinks_;  // parallel to constraints_; used for islands that form a chain

@@ -35,16 +35,40 @@ void World::orderContactsTopDown() {
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
   order_.scratch.resize(order_.keys.size());
   order_.tail.assign(m, 0);
+  // A resting pile's contacts keep their order step after step: checking last step's order costs a
+  // pass, sorting again several (and the batching after it more).
+  const bool before = islandBuilder_.reused() && order_.sortedStep + 1 == stepCount_ &&
+                      order_.sorted.size() == islands_.contacts.size() && order_.tailBefore.size() == m;
+  order_.kept.assign(m, 0);
   parallelFor(m, kIslandGrain, [&](uint32_t begin, uint32_t end) {
     for (uint32_t k = begin; k < end; ++k) {
       const Island& isl = islands_.islands[k];
       uint64_t* first = order_.keys.data() + isl.firstContact;
       order_.tail[k] = moveOutOfReachToTail(k, first);
-      sortKeysMadeInIndexOrder(first, order_.scratch.data() + isl.firstContact, isl.contactCount);
       uint32_t* out = islands_.contacts.data() + isl.firstContact;
+      if (before && order_.tail[k] == order_.tailBefore[k] && sortsAsLastStep(k)) {
+        std::copy_n(order_.sorted.data() + isl.firstContact, isl.contactCount, out);
+        order_.kept[k] = 1;
+        continue;
+      }
+      sortKeysMadeInIndexOrder(first, order_.scratch.data() + isl.firstContact, isl.contactCount);
       for (uint32_t j = 0; j < isl.contactCount; ++j) out[j] = keyIndex(first[j]);
     }
   });
+  order_.sorted = islands_.contacts;
+  order_.tailBefore = order_.tail;
+  order_.sortedStep = stepCount_;
+}
+
+// Whether island k's contacts, in last step's order, ascend by this step's keys (height from the top,
+// then index): the keys are distinct, so that order is the one the sort gives.
+bool World::sortsAsLastStep(uint32_t k) const {
+  const Island& isl = islands_.islands[k];
+  const uint32_t* last = order_.sorted.data() + isl.firstContact;
+  auto key = [&](uint32_t ci) { return descendingKey(order_.contactHeight[ci], ci); };
+  for (uint32_t j = 1; j < isl.contactCount; ++j)
+    if (!(key(last[j - 1]) < key(last[j]))) return false;
+  return true;
 }
 
 // A stack of thin plates (1 m wide, 2 cm thick) has, besides its chain of contacts, speculative
@@ -274,9 +298,17 @@ void World::batchLanes() {
   const float* levels = settings_.topDownOrder && settings_.wideSolve ? order_.contactHeight.data() : nullptr;
   laneRanges_.clear();
   const uint32_t m = static_cast<uint32_t>(islands_.islands.size());
+  // An island in last step's order (order_.kept: the same contacts between the same awake bodies)
+  // batches as it did: the batches depend on nothing else. Its ids and runs are last step's.
+  const bool before = !settings_.wideSolve && order_.sortedStep == stepCount_ && order_.batchedStep + 1 == stepCount_ &&
+                      order_.batched.size() == islands_.contacts.size();
   for (uint32_t k = 0; k < m; ++k) {
     const Island& isl = islands_.islands[k];
     const int32_t li = layoutOf_[k];
+    if (li < 0 && before && order_.kept[k]) {
+      std::copy_n(order_.batched.data() + isl.firstContact, isl.contactCount, islands_.contacts.data() + isl.firstContact);
+      continue;
+    }
     if (li < 0) {
       // The tail of contacts out of reach stays behind the chain: a range of its own.
       const uint32_t front = isl.contactCount - tailOf(k);
@@ -301,6 +333,8 @@ void World::batchLanes() {
       batcher.batch(bodies_, contactEdges_.data(), levels, islands_.contacts.data() + b, e - b, laneRun_.data() + b);
     }
   });
+  order_.batched = islands_.contacts;
+  order_.batchedStep = stepCount_;
   if (!settings_.wideSolve) return;
   // Batches of at least kMinWideLanes constraints are packed for the wide sweep.
   wideOf_.resize(laneRun_.size());
