@@ -6,20 +6,12 @@
 
 namespace haif {
 
-bool IslandBuilder::sameGraph(const BodyStore& bodies, const ContactEdge* contacts, uint32_t contactCount,
-                              const std::vector<Joint>& joints) {
+// Every key is written, equal or not: the next step compares with this one's.
+bool IslandBuilder::sameBodiesAndJoints(const BodyStore& bodies, const std::vector<Joint>& joints) {
   const uint32_t n = static_cast<uint32_t>(bodies.size());
-  bool same = keysValid_ && edgeKeys_.size() == contactCount && bodyKeys_.size() == n && jointKeys_.size() == joints.size();
-  edgeKeys_.resize(contactCount);
+  bool same = bodyKeys_.size() == n && jointKeys_.size() == joints.size();
   bodyKeys_.resize(n);
   jointKeys_.resize(joints.size());
-  // Every key is written, equal or not: the next step compares with this one's.
-  for (uint32_t ci = 0; ci < contactCount; ++ci) {
-    const ContactEdge& c = contacts[ci];
-    const EdgeKey key{c.a, c.b, c.count, c.apart};
-    same = same && edgeKeys_[ci] == key;
-    edgeKeys_[ci] = key;
-  }
   for (uint32_t i = 0; i < n; ++i) {
     const uint8_t key = bodyKey(bodies, i);
     same = same && bodyKeys_[i] == key;
@@ -31,7 +23,6 @@ bool IslandBuilder::sameGraph(const BodyStore& bodies, const ContactEdge* contac
     same = same && jointKeys_[j] == key;
     jointKeys_[j] = key;
   }
-  keysValid_ = true;
   return same;
 }
 

@@ -128,9 +128,14 @@ class IslandBuilder {
     bool operator==(const JointKey& o) const { return a == o.a && b == o.b && rows == o.rows && broken == o.broken; }
   };
   static uint8_t bodyKey(const BodyStore& bodies, uint32_t i) { return uint8_t(uint8_t(bodies.kind[i]) | bodies.asleep[i] << 4); }
-  // Compares the graph with the last build's and keeps this one's keys; true when they are equal.
+  // Whether the graph is the last build's. The contacts' keys, the most of them, are compared in
+  // ranges (possibly concurrently), each up to its first difference; after one the keys are written
+  // again at the next step, not this one: a churning pile pays one pass every other step.
+  template <class ParallelFor>
   bool sameGraph(const BodyStore& bodies, const ContactEdge* contacts, uint32_t contactCount,
-                 const std::vector<Joint>& joints);
+                 const std::vector<Joint>& joints, ParallelFor&& parallelFor);
+  static EdgeKey edgeKey(const ContactEdge& c) { return {c.a, c.b, c.count, c.apart}; }
+  bool sameBodiesAndJoints(const BodyStore& bodies, const std::vector<Joint>& joints);
   void refreshCarriers(const BodyStore& bodies, IslandSet& out) const;
 
   void uniteContacts(const BodyStore& bodies, const ContactEdge* contacts, uint32_t begin, uint32_t end);
@@ -149,14 +154,39 @@ class IslandBuilder {
   std::vector<EdgeKey> edgeKeys_;
   std::vector<uint8_t> bodyKeys_;
   std::vector<JointKey> jointKeys_;
-  bool keysValid_ = false, reused_ = false;
+  bool edgesKept_ = false;  // edgeKeys_ hold the last build's contacts (else written at the next)
+  bool reused_ = false;
   IslandSet kept_;  // the last build's islands, before the solve order rearranged their contacts
 };
 
 template <class ParallelFor>
+bool IslandBuilder::sameGraph(const BodyStore& bodies, const ContactEdge* contacts, uint32_t contactCount,
+                              const std::vector<Joint>& joints, ParallelFor&& parallelFor) {
+  const bool same = sameBodiesAndJoints(bodies, joints);  // keeps theirs either way (few)
+  if (!edgesKept_ || edgeKeys_.size() != contactCount) {
+    edgeKeys_.resize(contactCount);
+    parallelFor(contactCount, kContactChunk, [&](uint32_t b, uint32_t e) {
+      for (uint32_t ci = b; ci < e; ++ci) edgeKeys_[ci] = edgeKey(contacts[ci]);
+    });
+    edgesKept_ = true;
+    return false;
+  }
+  uint32_t differ = 0;  // ranges with a difference (counted concurrently)
+  parallelFor(contactCount, kContactChunk, [&](uint32_t b, uint32_t e) {
+    for (uint32_t ci = b; ci < e; ++ci)
+      if (!(edgeKeys_[ci] == edgeKey(contacts[ci]))) {
+        __atomic_fetch_add(&differ, 1u, __ATOMIC_RELAXED);
+        return;
+      }
+  });
+  edgesKept_ = differ == 0;
+  return same && edgesKept_;
+}
+
+template <class ParallelFor>
 void IslandBuilder::build(const BodyStore& bodies, const ContactEdge* contacts, uint32_t contactCount,
                           const std::vector<Joint>& joints, IslandSet& out, ParallelFor&& parallelFor) {
-  reused_ = sameGraph(bodies, contacts, contactCount, joints);
+  reused_ = sameGraph(bodies, contacts, contactCount, joints, parallelFor);
   if (reused_) {
     out = kept_;
     refreshCarriers(bodies, out);
