@@ -169,26 +169,38 @@ TEST(Islands, ContactsDestroyedDuringARunLeaveIslandsAndCountsRight) {
   EXPECT_NE(w.islandOf(row[2]), w.islandOf(row[0]));
 }
 
+// A graph for the island builder: n bodies (one in 50 static, one in 50 kinematic and, with
+// `sleepers`, one in 50 asleep) and m edges, mostly short (chains and clusters of every size), some
+// long ones merging them, one in `emptyOneIn` without points (they join nothing).
+struct RandomGraph {
+  BodyStore bodies;
+  std::vector<ContactEdge> edges;
+};
+RandomGraph randomGraph(std::mt19937& rng, uint32_t n, size_t m, bool sleepers, uint32_t emptyOneIn) {
+  RandomGraph g;
+  for (uint32_t i = 0; i < n; ++i) {
+    const uint32_t r = rng() % 50;
+    g.bodies.add(r == 0 ? BodyKind::Static : r == 1 ? BodyKind::Kinematic : BodyKind::Dynamic, Transform{}, 1.0f,
+                 Mat3::Identity());
+    if (sleepers && r == 2) g.bodies.asleep[i] = 1;
+  }
+  g.edges.resize(m);
+  for (ContactEdge& e : g.edges) {
+    e.a = uint32_t(rng() % n);
+    e.b = rng() % 8 == 0 ? uint32_t(rng() % n) : std::min(n - 1, e.a + 1 + uint32_t(rng() % 3));
+    e.count = uint8_t(rng() % emptyOneIn == 0 ? 0 : 1 + rng() % 4);
+  }
+  return g;
+}
+
 // The unions run concurrently on a pool's threads: the islands (their members, numbering, order and
 // contact lists) are those of the build on one thread, and they are the graph's components.
 TEST(IslandBuilder, ConcurrentUnionsGiveTheSameIslandsAtEveryThreadCount) {
   std::mt19937 rng(7);
-  BodyStore bodies;
   const uint32_t n = 30000;
-  for (uint32_t i = 0; i < n; ++i) {
-    const uint32_t r = rng() % 50;
-    bodies.add(r == 0 ? BodyKind::Static : r == 1 ? BodyKind::Kinematic : BodyKind::Dynamic, Transform{}, 1.0f,
-               Mat3::Identity());
-    if (r == 2) bodies.asleep[i] = 1;
-  }
-  // Mostly short edges (chains and clusters of every size), some long ones merging them, some
-  // without points (they join nothing).
-  std::vector<ContactEdge> edges(60000);
-  for (ContactEdge& e : edges) {
-    e.a = uint32_t(rng() % n);
-    e.b = rng() % 8 == 0 ? uint32_t(rng() % n) : std::min(n - 1, e.a + 1 + uint32_t(rng() % 3));
-    e.count = uint8_t(rng() % 10 == 0 ? 0 : 1 + rng() % 4);
-  }
+  RandomGraph graph = randomGraph(rng, n, 60000, /*sleepers=*/true, /*emptyOneIn=*/10);
+  const BodyStore& bodies = graph.bodies;
+  const std::vector<ContactEdge>& edges = graph.edges;
   std::vector<Joint> joints;
   IslandBuilder one;
   IslandSet expected;
@@ -285,19 +297,10 @@ void expectSameIslands(const IslandSet& got, const IslandSet& want, const char* 
 // contact more) builds them afresh. Either way they are what a new builder makes of the same graph.
 TEST(IslandBuilder, AnUnchangedGraphGetsTheLastIslandsAndAChangedOneIsBuiltAfresh) {
   std::mt19937 rng(11);
-  BodyStore bodies;
   const uint32_t n = 3000;
-  for (uint32_t i = 0; i < n; ++i) {
-    const uint32_t r = rng() % 50;
-    bodies.add(r == 0 ? BodyKind::Static : r == 1 ? BodyKind::Kinematic : BodyKind::Dynamic, Transform{}, 1.0f,
-               Mat3::Identity());
-  }
-  std::vector<ContactEdge> edges(6000);
-  for (ContactEdge& e : edges) {
-    e.a = uint32_t(rng() % n);
-    e.b = rng() % 8 == 0 ? uint32_t(rng() % n) : std::min(n - 1, e.a + 1 + uint32_t(rng() % 3));
-    e.count = uint8_t(rng() % 3 == 0 ? 0 : 1 + rng() % 4);
-  }
+  RandomGraph graph = randomGraph(rng, n, 6000, /*sleepers=*/false, /*emptyOneIn=*/3);
+  BodyStore& bodies = graph.bodies;
+  std::vector<ContactEdge>& edges = graph.edges;
   std::vector<Joint> joints(40);
   for (Joint& j : joints) {
     j.def.type = rng() % 2 ? JointType::Ball : JointType::Hinge;
