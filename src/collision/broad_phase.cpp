@@ -11,6 +11,8 @@ void BroadPhase::addBody(uint32_t body, const Aabb& tight, bool isStatic, float 
     previousFat_.resize(body + 1);
   }
   previousFat_[body] = Aabb{};  // new: it overlapped nothing before
+  wideReady_ = false;
+  if (isStatic) staticWideReady_ = false;
   isStatic_[body] = isStatic ? 1 : 0;
   marginScale_[body] = marginScale;
   // Static boxes need no margin: they never move.
@@ -29,6 +31,7 @@ void BroadPhase::move(uint32_t body, const Aabb& tight, const Vec3& lead, bool r
   const int32_t p = proxy_[body];
   if (!movedFlag_[body]) previousFat_[body] = movingTree_.fatAabb(p);
   const Aabb fat = tight.expanded(fatMargin * marginScale_[body]).swept(lead);
+  wideReady_ = false;
   if (rebuildLater) movingTree_.setLeafBox(p, fat);
   else movingTree_.moveProxy(p, fat);
   markMoved(body);

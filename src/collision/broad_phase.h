@@ -5,6 +5,7 @@
 #pragma once
 
 #include "collision/dynamic_tree.h"
+#include "collision/wide_tree.h"
 
 #include <cstdint>
 #include <vector>
@@ -35,11 +36,24 @@ class BroadPhase {
   /// Gives a body that does not fit a new fat box (update() without its test). With `rebuildLater`
   /// the tree is left as it is: for many moves in one step, then rebuildMovingTree() before any query.
   void move(uint32_t body, const Aabb& tight, const Vec3& lead, bool rebuildLater);
-  void rebuildMovingTree() { movingTree_.rebuild(); }
+  void rebuildMovingTree() {
+    movingTree_.rebuild();
+    wideReady_ = false;
+  }
   /// The same, the root's two subtrees built by runBoth (DynamicTree::rebuild).
   template <class RunBoth>
   void rebuildMovingTree(RunBoth&& runBoth) {
     movingTree_.rebuild(runBoth);
+    wideReady_ = false;
+  }
+  /// Copies the trees into WideTrees that queryMoved then reads until a tree next changes: the same
+  /// pairs in the same order, for less; worth the copy where many bodies are to query. The static
+  /// tree's copy is kept until a static body is added.
+  void prepareQueries() {
+    movingWide_.build(movingTree_);
+    wideReady_ = true;
+    if (!staticWideReady_) staticWide_.build(staticTree_);
+    staticWideReady_ = true;
   }
   const Aabb& fatAabb(uint32_t body) const {
     return (isStatic_[body] ? staticTree_ : movingTree_).fatAabb(proxy_[body]);
@@ -53,7 +67,7 @@ class BroadPhase {
   /// owner (the World) keeps it while the boxes overlap, so asking it again would only repeat a
   /// lookup (in a churning pile most re-inserted bodies keep most of their neighbours: those lookups
   /// were a third of the broad phase). Every new pair that involves a moved body is reported by
-  /// exactly one moved body's query (two moved bodies: by the later index), so querying all of
+  /// exactly one moved body's query (two moved bodies: by the lower id), so querying all of
   /// moved() finds each once. Read-only: moved bodies may be queried concurrently.
   template <class F>
   void queryMoved(uint32_t m, F&& onPair) const {
@@ -65,8 +79,11 @@ class BroadPhase {
       if (before.overlaps(movedFlag_[other] ? previousFat_[other] : fatAabb(other))) return;  // not new
       onPair(m, other);
     };
-    movingTree_.query(box, visit);
-    if (!isStatic_[m]) staticTree_.query(box, visit);
+    if (wideReady_) movingWide_.query(box, visit);
+    else movingTree_.query(box, visit);
+    if (isStatic_[m]) return;
+    if (wideReady_) staticWide_.query(box, visit);
+    else staticTree_.query(box, visit);
   }
   void clearMoved() {
     for (uint32_t m : moved_) movedFlag_[m] = 0;
@@ -92,6 +109,9 @@ class BroadPhase {
   }
 
   DynamicTree movingTree_;
+  WideTree movingWide_, staticWide_;  // the trees' copies for queries (prepareQueries)
+  bool wideReady_ = false;        // both copies are the trees as they are now
+  bool staticWideReady_ = false;  // staticWide_ is the static tree as it is now
   DynamicTree staticTree_;
   std::vector<int32_t> proxy_;
   std::vector<uint8_t> isStatic_;

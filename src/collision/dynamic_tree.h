@@ -47,6 +47,12 @@ class DynamicTree {
   }
 
   const Aabb& fatAabb(int32_t proxy) const { return nodes_[proxy].box; }
+  // The nodes as query() walks them (for WideTree): fatAabb reads any node's box.
+  int32_t root() const { return root_; }
+  bool isLeaf(int32_t node) const { return nodes_[node].child1 == kNull; }
+  int32_t child1(int32_t node) const { return nodes_[node].child1; }
+  int32_t child2(int32_t node) const { return nodes_[node].child2; }
+  static constexpr int kMaxStack = 256;  // a balanced tree of 2^64 leaves is < 128 deep
   uint32_t userData(int32_t proxy) const { return nodes_[proxy].userData; }
   int32_t height() const { return root_ == kNull ? 0 : nodes_[root_].height; }
   int32_t proxyCount() const { return proxyCount_; }
@@ -78,7 +84,6 @@ class DynamicTree {
   bool validate() const;
 
  private:
-  static constexpr int kMaxStack = 256;  // a balanced tree of 2^64 leaves is < 128 deep
   static constexpr int32_t kMaxImbalance = 1;  // children's heights differ by at most this
   struct Node {
     Aabb box;

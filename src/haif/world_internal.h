@@ -41,6 +41,9 @@ constexpr int kFlightLeadSteps = 4;
 /// Share of the moving bodies that must leave their fat boxes in one step for the broad phase's tree
 /// to be built afresh rather than moved into body by body (World::updateBroadPhase).
 constexpr float kRebuildShare = 0.25f;
+/// Share of the moving tree's bodies that must query it in one step for the queries to read a
+/// four-wide copy of it (BroadPhase::prepareQueries): the copy costs about as much as 1/16 of them.
+constexpr float kWideQueryShare = 1.0f / 16.0f;
 /// Narrow-phase pairs cost 0.1 to 10 microseconds each, very unevenly: small tasks balance them.
 constexpr uint32_t kPairGrain = 64;
 /// Contacts prepared in one chunk (row building, a few hundred nanoseconds each).
@@ -61,6 +64,7 @@ using world_detail::kBodyGrain;
 using world_detail::kFlightLeadSteps;
 using world_detail::kBoundsGrain;
 using world_detail::kRebuildShare;
+using world_detail::kWideQueryShare;
 using world_detail::kContactChunk;
 using world_detail::kHeightGrain;
 using world_detail::kIslandGrain;
