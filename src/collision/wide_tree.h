@@ -7,9 +7,8 @@
 #pragma once
 
 #include "collision/dynamic_tree.h"
-#include "core/simd4.h"
-
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 namespace haif {
@@ -38,13 +37,28 @@ class WideTree {
   std::vector<Node> nodes_;  // nodes_[0] holds the tree's root in its first lane
 };
 
+// Four lanes as vector extensions that GCC and Clang both read (this header reaches code built by
+// either: the fuzz targets are Clang's), not core/simd4.h, which is GCC's.
+namespace wide_lanes {
+using F4 = float __attribute__((vector_size(16)));
+using I4 = int32_t __attribute__((vector_size(16)));
+inline F4 load(const float* p) {
+  F4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+inline F4 splat(float x) { return F4{x, x, x, x}; }
+}  // namespace wide_lanes
+
 template <class F>
 void WideTree::query(const Aabb& box, F&& f) const {
-  using simd4::F4;
-  using simd4::I4;
+  using wide_lanes::F4;
+  using wide_lanes::I4;
+  using wide_lanes::load;
+  using wide_lanes::splat;
   if (nodes_.empty()) return;
-  const F4 loX = F4{} + box.lo.x(), loY = F4{} + box.lo.y(), loZ = F4{} + box.lo.z();
-  const F4 hiX = F4{} + box.hi.x(), hiY = F4{} + box.hi.y(), hiZ = F4{} + box.hi.z();
+  const F4 loX = splat(box.lo.x()), loY = splat(box.lo.y()), loZ = splat(box.lo.z());
+  const F4 hiX = splat(box.hi.x()), hiY = splat(box.hi.y()), hiZ = splat(box.hi.z());
   int32_t stack[DynamicTree::kMaxStack];
   int top = 0;
   stack[top++] = 0;
@@ -56,8 +70,8 @@ void WideTree::query(const Aabb& box, F&& f) const {
     }
     const Node& n = nodes_[code];
     // DynamicTree's overlap test (node.lo <= box.hi and box.lo <= node.hi on each axis), four lanes.
-    const I4 in = (simd4::load(n.lo[0]) <= hiX) & (loX <= simd4::load(n.hi[0])) & (simd4::load(n.lo[1]) <= hiY) &
-                  (loY <= simd4::load(n.hi[1])) & (simd4::load(n.lo[2]) <= hiZ) & (loZ <= simd4::load(n.hi[2]));
+    const I4 in = (load(n.lo[0]) <= hiX) & (loX <= load(n.hi[0])) & (load(n.lo[1]) <= hiY) & (loY <= load(n.hi[1])) &
+                  (load(n.lo[2]) <= hiZ) & (loZ <= load(n.hi[2]));
     if (top + kLanes > DynamicTree::kMaxStack) continue;  // as the tree's query: never at a real depth
     // Lanes pushed first to last, so the last is taken first: the tree's walk takes a node's second
     // child first, and the lanes hold the first child's part, then the second's.
