@@ -7,8 +7,9 @@
 #pragma once
 
 #include "collision/dynamic_tree.h"
+#include "core/simd4_lanes.h"
+
 #include <cstdint>
-#include <cstring>
 #include <vector>
 
 namespace haif {
@@ -17,7 +18,6 @@ class WideTree {
  public:
   /// Copies `tree` (its boxes and leaves as they are now).
   void build(const DynamicTree& tree);
-  void clear() { nodes_.clear(); }
 
   /// Calls f(userData) for every leaf whose box overlaps `box`: the same leaves, in the same order,
   /// as tree.query(box, f) on the tree it was built from. Safe to call concurrently.
@@ -37,25 +37,12 @@ class WideTree {
   std::vector<Node> nodes_;  // nodes_[0] holds the tree's root in its first lane
 };
 
-// Four lanes as vector extensions that GCC and Clang both read (this header reaches code built by
-// either: the fuzz targets are Clang's), not core/simd4.h, which is GCC's.
-namespace wide_lanes {
-using F4 = float __attribute__((vector_size(16)));
-using I4 = int32_t __attribute__((vector_size(16)));
-inline F4 load(const float* p) {
-  F4 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-inline F4 splat(float x) { return F4{x, x, x, x}; }
-}  // namespace wide_lanes
-
 template <class F>
 void WideTree::query(const Aabb& box, F&& f) const {
-  using wide_lanes::F4;
-  using wide_lanes::I4;
-  using wide_lanes::load;
-  using wide_lanes::splat;
+  using simd4::F4;
+  using simd4::I4;
+  using simd4::load;
+  auto splat = [](float x) { return F4{x, x, x, x}; };
   if (nodes_.empty()) return;
   const F4 loX = splat(box.lo.x()), loY = splat(box.lo.y()), loZ = splat(box.lo.z());
   const F4 hiX = splat(box.hi.x()), hiY = splat(box.hi.y()), hiZ = splat(box.hi.z());

@@ -4,21 +4,9 @@
 // scalar code on other targets. Arithmetic with a scalar operand broadcasts it.
 #pragma once
 
-#include <cstdint>
-#include <cstring>
+#include "core/simd4_lanes.h"
 
 namespace haif::simd4 {
-
-using F4 = float __attribute__((vector_size(16)));
-using I4 = int32_t __attribute__((vector_size(16)));
-
-inline F4 load(const float* p) {
-  F4 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
-inline void store(float* p, F4 v) { std::memcpy(p, &v, sizeof v); }
 
 /// The 4 × 4 block whose rows are r0..r3, as its columns c0..c3 (c0 = {r0[0], r1[0], r2[0], r3[0]}).
 inline void transpose(F4 r0, F4 r1, F4 r2, F4 r3, F4& c0, F4& c1, F4& c2, F4& c3) {
