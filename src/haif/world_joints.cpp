@@ -176,13 +176,13 @@ void World::prepareJoints(uint32_t k, const SolverParams& sp) {
   for (uint32_t j = 0; j < nj; ++j) prepareJointForStep(bodies_, joints_[ids[j]], ids[j], sp, jp, time, js[j]);
   if (sp.warmStart) warmStartJoints(bodies_, js, nj);
   if (jp.treeSolve) {
-    jointTrees_[k].build(js, nj, parallelJoints_);
-    prepareTreeMotors(js, nj, jointTrees_[k], treeMotors_[k]);
+    jointTreeOf(k).build(js, nj, parallelJoints_);
+    prepareTreeMotors(js, nj, jointTreeOf(k), treeMotorsOf(k));
   } else
     for (uint32_t j = 0; j < nj; ++j) prepareSoftBlock(js[j]);
   // No tree holds these joints (a net): every row is swept, no stiffer than the sweeps converge on.
   const float hertz = jp.softHertzFor(jointMainSweeps_, sp.dt);
-  if ((!jp.treeSolve || jointTrees_[k].size() == 0) && hertz < jp.softHertz)
+  if ((!jp.treeSolve || jointTreeOf(k).size() == 0) && hertz < jp.softHertz)
     for (uint32_t j = 0; j < nj; ++j) setSoftness(js[j], hertz, jp.softDampingRatio, sp.dt);
 }
 
@@ -201,7 +201,7 @@ void World::finishJoints(uint32_t k) {
       for (uint32_t j = 0; j < isl.bodyCount; ++j)
         stiffenInertia(bodies_, bodies[j], jointStiffness_[bodies[j]], settings_.dt);
     projectJointPositions(bodies_, joints_.data(), islands_.joints.data() + isl.firstJoint, nj, solverParams(),
-                          settings_.joints, js, jointTrees_[k], parallelJoints_);
+                          settings_.joints, js, jointTreeOf(k), parallelJoints_);
     if (stiff)
       for (uint32_t j = 0; j < isl.bodyCount; ++j) bodies_.updateWorldInertia(bodies[j]);
   }

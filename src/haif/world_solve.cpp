@@ -110,14 +110,14 @@ SweepResult World::sweepIsland(uint32_t k, bool useBias, bool restartDirection, 
         });
   }
   if (isl.jointCount > 0) {
-    JointTree* tree = settings_.joints.treeSolve ? &jointTrees_[k] : nullptr;
+    JointTree* tree = settings_.joints.treeSolve ? &jointTreeOf(k) : nullptr;
     // Servos through the tree, which answers them in its solve just after (dynamics/motor_mass.h);
     // solved through the joints, through the contacts too.
     if (tree) {
       float motors = 0.0f;
       if (!coupledSettled || !solveMotorsThroughContacts(bodies_, jointCouplingOf(k), cs, chainLinks_.data() + isl.firstContact,
                                                          denseSystems_[denseOf_[k]], useBias, motors))
-        motors = solveTreeMotors(bodies_, jointConstraints_.data() + isl.firstJoint, treeMotors_[k], useBias);
+        motors = solveTreeMotors(bodies_, jointConstraints_.data() + isl.firstJoint, treeMotorsOf(k), useBias);
       r.residual = std::max(r.residual, motors);
     }
     r.residual = std::max(r.residual, solveJointIteration(bodies_, jointConstraints_.data() + isl.firstJoint,
@@ -257,7 +257,7 @@ void World::solveIslands(int iterations) {
     if (isWide(k)) forEachLaneRange(k, packLanes);
     if (isl.jointCount > 0) prepareJoints(k, sp);
     // Contacts whose push the joints carry away are solved through them (its rows need the tree).
-    if (denseOf_[k] >= 0 && isl.jointCount > 0 && jointTrees_[k].size() == isl.jointCount) {
+    if (denseOf_[k] >= 0 && isl.jointCount > 0 && jointTreeOf(k).size() == isl.jointCount) {
       ChainLink* links = chainLinks_.data() + isl.firstContact;
       const uint32_t n = isl.contactCount - tailOf(k);
       const float ratio = settings_.exactMassRatio * kJointCoupledRatioFactor;
@@ -471,7 +471,7 @@ bool World::mayCoupleJoints(uint32_t k) const {
 JointCoupling World::jointCouplingOf(uint32_t k) {
   const Island& isl = islands_.islands[k];
   JointCoupling c;
-  c.tree = &jointTrees_[k];
+  c.tree = &jointTreeOf(k);
   c.joints = jointConstraints_.data() + isl.firstJoint;
   c.jointCount = isl.jointCount;
   c.dv = couplingDv_.data();
@@ -480,7 +480,7 @@ JointCoupling World::jointCouplingOf(uint32_t k) {
   c.changeW = couplingChangeW_.data();
   c.contacts = constraints_.data() + isl.firstContact;
   c.contactCount = isl.contactCount - tailOf(k);
-  c.motors = &treeMotors_[k];
+  c.motors = &treeMotorsOf(k);
   return c;
 }
 
@@ -579,9 +579,13 @@ void World::solve(int iterations) {
       storage += DenseNormalSystem::doublesFor(denseRows_[k]);
     }
   jointConstraints_.resize(islands_.joints.size());
-  if (jointTrees_.size() < m) {  // both grow to the most islands seen, then are reused
-    jointTrees_.resize(m);
-    treeMotors_.resize(m);
+  jointSlot_.assign(m, -1);
+  int32_t slots = 0;
+  for (uint32_t k = 0; k < m; ++k)
+    if (islands_.islands[k].jointCount > 0) jointSlot_[k] = slots++;
+  if (jointTrees_.size() < size_t(slots)) {  // both grow to the most jointed islands seen, then are reused
+    jointTrees_.resize(size_t(slots));
+    treeMotors_.resize(size_t(slots));
   }
   if (!joints_.empty()) stiffenJointedBodies();
   spare_.iterations.assign(m, 0);
