@@ -161,17 +161,10 @@ void ComparisonClip::drawStrip(render::Canvas& canvas) {
     if (side_[i]->budgetMs() > 0.f)
       time.hlines.push_back({side_[i]->spec() + " budget", side_[i]->budgetMs(), kSideColour[i], true});
   }
-  // A one-off stall (a page fault, the OS) should not flatten everything else: the time axis ends a
-  // little above the 99th percentile or the budget, and rarer spikes run off the top.
+  // A one-off stall (the first step, a page fault, the OS) should not flatten everything else.
   std::vector<float> all = side_[0]->history().totalMs;
   all.insert(all.end(), side_[1]->history().totalMs.begin(), side_[1]->history().totalMs.end());
-  if (all.size() >= 20) {
-    auto p99 = all.begin() + std::ptrdiff_t(all.size() * 99 / 100);
-    std::nth_element(all.begin(), p99, all.end());
-    float top = *p99 * 1.4f;
-    for (int i = 0; i < 2; ++i) top = std::max(top, side_[i]->budgetMs() * 1.15f);
-    if (top > 0.f) time.yMax = top;
-  }
+  time.yMax = render::robustTimeTop(std::move(all), std::max(side_[0]->budgetMs(), side_[1]->budgetMs()));
   float maxIterations = 1.f;
   for (int i = 0; i < 2; ++i)
     for (float v : side_[i]->history().iterations) maxIterations = std::max(maxIterations, v);

@@ -61,6 +61,17 @@ float ChartGeometry::xToPixel(double x) const {
   return static_cast<float>(left + (v - xLo) / (xHi - xLo) * (right - left));
 }
 
+float robustTimeTop(std::vector<float> values, float budget) {
+  values.erase(std::remove_if(values.begin(), values.end(), [](float v) { return !std::isfinite(v); }),
+               values.end());
+  const size_t n = values.size();
+  if (n < 8) return NAN;
+  const auto p99 = values.begin() + std::ptrdiff_t(std::min(n * 99 / 100, n - 2));
+  std::nth_element(values.begin(), p99, values.end());
+  const float top = std::max(*p99 * 1.4f, budget * 1.15f);
+  return *std::max_element(values.begin(), values.end()) > top ? top : NAN;
+}
+
 ChartGeometry drawChart(Canvas& canvas, TextRenderer& text, int x0, int y0, int x1, int y1,
                         const ChartSpec& spec, const ChartStyle& style) {
   canvas.setClip(x0, y0, x1, y1);

@@ -73,6 +73,12 @@ struct ChartGeometry {
   float xToPixel(double x) const;
 };
 
+/// The top of a time axis that a one-off stall does not set (the first step's allocations and cold
+/// caches, a page fault, the OS): 1.4 times the 99th percentile of `values` (the highest value left
+/// out once there are 8), never below 1.15 times `budget` so its line shows. NaN (the axis from the
+/// data) when every value fits under it anyway; values above it run off the top of the plot.
+float robustTimeTop(std::vector<float> values, float budget);
+
 /// Draws spec into rect [x0,x1) x [y0,y1) of canvas.
 ChartGeometry drawChart(Canvas& canvas, TextRenderer& text, int x0, int y0, int x1, int y1,
                         const ChartSpec& spec, const ChartStyle& style);

@@ -118,6 +118,11 @@ void drawOverlay(Canvas& canvas, TextRenderer& text, const Overlay& o, ViewMode 
   time.series.push_back({"solve", tail(o.solveMs, o.window), chart_colors::kSolve,
                          ChartSeries::Style::StackedArea, 0.f});
   if (o.budgetMs > 0.f) time.hlines.push_back({"budget", o.budgetMs, Rgba{255, 90, 90, 255}, false});
+  {
+    std::vector<float> total = time.series[0].values;
+    for (size_t i = 0; i < total.size() && i < time.series[1].values.size(); ++i) total[i] += time.series[1].values[i];
+    time.yMax = robustTimeTop(std::move(total), o.budgetMs);
+  }
   cy += l.chartH + l.pad / 2;
   if (cy + 8 < r.y1) drawChart(canvas, text, cx0, cy, cx1, std::min(cy + l.chartH, r.y1), time, style);
   canvas.resetClip();

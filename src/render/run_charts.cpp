@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "render/chart.h"
 #include "render/chart_colors.h"
@@ -50,6 +51,19 @@ bool writeStepTimeChart(const std::string& path, const RunSeries& run, const Run
     for (size_t i = 0; i < total.size(); ++i)
       total[i] = (i < run.collisionMs.size() ? run.collisionMs[i] : 0.f) +
                  (i < run.solveMs.size() ? run.solveMs[i] : 0.f);
+  }
+  // A first step of 130 ms (allocations, cold caches) would set a scale that flattens every later
+  // step against a 4 ms budget: such steps run off the top, and the title says how many and how high.
+  spec.yMax = robustTimeTop(total, run.budgetMs);
+  if (std::isfinite(spec.yMax)) {
+    int above = 0;
+    float highest = 0.f;
+    for (float v : total)
+      if (v > spec.yMax) ++above, highest = std::max(highest, v);
+    char note[96];
+    std::snprintf(note, sizeof note, "   [%d step%s above the scale, up to %.1f ms]", above, above == 1 ? "" : "s",
+                  highest);
+    spec.title += note;
   }
   spec.series.push_back({"total step", std::move(total), chart_colors::kTotal, ChartSeries::Style::Line, 1.3f});
   if (run.budgetMs > 0.f) spec.hlines.push_back({"budget", run.budgetMs, chart_colors::kBudget, false});
