@@ -4,6 +4,7 @@
 
 #include "collision/manifold.h"
 #include "collision/manifold_cache.h"
+#include "core/growing_array.h"
 
 #include <cstdint>
 
@@ -44,6 +45,9 @@ struct Contact {
   float toleranceScale = 1.0f;
   bool touching() const { return manifold.count > 0; }
 };
+
+/// The world's contacts: one array, grown in place as pairs are found (core/growing_array.h).
+using ContactList = GrowingArray<Contact>;
 
 /// Contacts a loop over scattered contacts fetches ahead of the one it works on.
 constexpr uint32_t kPrefetchAhead = 6;

@@ -8,7 +8,7 @@ PinchDetector::Side PinchDetector::sideOf(const BodyStore& bodies, const Contact
   return Side{da ? e.a : e.b, da ? e.b : e.a, da ? Vec3(-n) : n};
 }
 
-uint32_t PinchDetector::mark(const BodyStore& bodies, const ContactEdge* edges, std::vector<Contact>& contacts) {
+uint32_t PinchDetector::mark(const BodyStore& bodies, const ContactEdge* edges, ContactList& contacts) {
   if (noteOfBody_.size() < bodies.size()) noteOfBody_.resize(bodies.size(), -1);
   notes_.clear();
   candidates_.clear();
@@ -44,7 +44,7 @@ uint32_t PinchDetector::mark(const BodyStore& bodies, const ContactEdge* edges, 
   return pinched;
 }
 
-uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* edges, std::vector<Contact>& contacts) {
+uint32_t PinchDetector::markCrushes(const BodyStore& bodies, const ContactEdge* edges, ContactList& contacts) {
   if (pressureOfBody_.size() < bodies.size()) pressureOfBody_.resize(bodies.size(), -1);
   pressures_.clear();
   auto press = [&](uint32_t body, const Vec3& into, const Vec3& push, uint32_t source, uint32_t via, uint32_t head) {

@@ -43,7 +43,7 @@ class PinchDetector {
   /// (ContactEdge::pressedByImmovable) whose dynamic body is pressed so from opposite sides (the
   /// narrow phase clears it on every contact it visits). Contacts are read in index order: the
   /// result does not depend on threads. Returns the number of pinched bodies.
-  uint32_t mark(const BodyStore& bodies, const ContactEdge* edges, std::vector<Contact>& contacts);
+  uint32_t mark(const BodyStore& bodies, const ContactEdge* edges, ContactList& contacts);
   /// The contacts the last mark() set pinched (some may be listed twice): read without the contacts.
   const std::vector<uint32_t>& pinchedContacts() const { return pinchedContacts_; }
 
@@ -63,14 +63,14 @@ class PinchDetector {
   static Side sideOf(const BodyStore& bodies, const ContactEdge& e, const Contact& c);
 
   // The crushes (header comment): returns the bodies at their ends that were not pinched already.
-  uint32_t markCrushes(const BodyStore& bodies, const ContactEdge* edges, std::vector<Contact>& contacts);
+  uint32_t markCrushes(const BodyStore& bodies, const ContactEdge* edges, ContactList& contacts);
 
   struct Note {
     uint32_t body;
     Vec3 n1, n2;  // the first two unlike normals pointing into the body
     bool two = false, pinched = false;
   };
-  void setPinched(std::vector<Contact>& contacts, uint32_t c, bool pinched) {
+  void setPinched(ContactList& contacts, uint32_t c, bool pinched) {
     contacts[c].pinched = pinched;
     if (pinched) pinchedContacts_.push_back(c);
   }

@@ -80,7 +80,7 @@ struct TurnProjectionSettings {
 struct TurnProjectionInput {
   BodyStore* bodies = nullptr;
   const std::vector<Shape>* shapes = nullptr;
-  const std::vector<Contact>* contacts = nullptr;
+  const ContactList* contacts = nullptr;
   const ContactEdge* edges = nullptr;
   const uint8_t* jointed = nullptr;   ///< per body: it has a joint (it is not moved); null: none has
   const std::vector<uint32_t>* pinched = nullptr;  ///< the contacts marked pinched (haif/pinch.h); null: none

@@ -7,6 +7,7 @@
 #include "collision/pair_map.h"
 #include "collision/shape.h"
 #include "core/body_store.h"
+#include "core/growing_array.h"
 #include "dynamics/buoyancy.h"
 #include "dynamics/contact.h"
 #include "dynamics/contact_chain.h"
@@ -103,7 +104,7 @@ class World {
   BodyStore& bodies() { return bodies_; }
   uint32_t bodyCount() const { return static_cast<uint32_t>(bodies_.size()); }
   const Shape& shape(uint32_t body) const { return shapes_[body]; }
-  const std::vector<Contact>& contacts() const { return contacts_; }
+  const ContactList& contacts() const { return contacts_; }
   /// Per contact, its bodies and point count as of the last narrow phase (what island building reads).
   const std::vector<ContactEdge>& contactEdges() const { return contactEdges_; }
   const IslandSet& islands() const { return islands_; }
@@ -239,7 +240,7 @@ class World {
 
   BroadPhase broadPhase_;
   PairMap pairs_;
-  std::vector<Contact> contacts_;
+  ContactList contacts_;
   // The broad and narrow phase's scratch (world_collision.cpp).
   struct CollisionBuffers {
     std::vector<std::vector<std::pair<uint32_t, uint32_t>>> newPairRuns;  // per run of moved bodies: pairs found
@@ -275,8 +276,9 @@ class World {
     std::vector<uint8_t> kept;              // per island, this step: its order is last step's
     uint64_t sortedStep = ~0ull, batchedStep = ~0ull;  // the steps they were made in
   } order_;
-  std::vector<ContactConstraint> constraints_;
-  std::vector<ChainLink> chainLinks_;  // parallel to constraints_; used for islands that form a chain
+  // Rebuilt each step, 1.5 KB a touching contact; grown in place (core/growing_array.h).
+  GrowingArray<ContactConstraint> constraints_;
+  GrowingArray<ChainLink> chainLinks_;  // parallel to constraints_; used for islands that form a chain
   // Per island: how its normal rows are solved this step, when not swept (0): exactly as a chain, or
   // together as a small island (contact_chain.h).
   enum ExactSolve : uint8_t { kChainSolve = 1, kSmallIslandSolve = 2, kJointCoupledSolve = 3 };

@@ -1,5 +1,6 @@
 #include "tools/bench_scaling.h"
 
+#include "core/growing_array.h"
 #include "haif/world.h"
 #include "scene/build_world.h"
 #include "scene/scene_loader.h"
@@ -23,13 +24,14 @@ namespace haif {
 namespace {
 
 // Heap memory in use (MB): what the allocator has handed out and not had back, mapped blocks
-// included. Read before a world is built and after its last step, the difference is what it holds
+// included, and the pages the largest arrays map for themselves (core/growing_array.h). Read before a world is built and after its last step, the difference is what it holds
 // (the process's resident size would not do: freed memory of the last world is reused, not returned).
 // NaN where the allocator does not keep these counts (a sanitizer's replaces malloc: all zero).
 double heapInUseMb() {
   const struct mallinfo2 m = mallinfo2();
-  const size_t bytes = m.uordblks + m.hblkhd;
-  return bytes > 0 ? double(bytes) / (1024.0 * 1024.0) : NAN;
+  const size_t heap = m.uordblks + m.hblkhd;
+  const size_t bytes = heap + growingArrayMappedBytes();
+  return heap > 0 ? double(bytes) / (1024.0 * 1024.0) : NAN;
 }
 
 // The random pile's cell edge is 2.2 x its largest size (0.4 m): ten layers of cells over a square.

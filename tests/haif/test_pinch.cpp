@@ -213,7 +213,7 @@ uint32_t crushesOfALeaningRow(const Vec3& push, const Vec3& lean, const Vec3& li
   const uint32_t a = add(BodyKind::Dynamic, Vec3(0, 0.5f, 0));
   const uint32_t b = add(BodyKind::Dynamic, Vec3(0, 1, -0.5f));
   bodies.v[lift] = liftVelocity;
-  std::vector<Contact> contacts;
+  ContactList contacts;
   std::vector<ContactEdge> edges;
   auto pair = [&](uint32_t x, uint32_t y, const Vec3& normal, bool immovable) {
     Contact c;

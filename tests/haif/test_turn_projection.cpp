@@ -17,7 +17,7 @@ constexpr float kDt = 1.0f / 60.0f;
 struct Scene {
   BodyStore bodies;
   std::vector<Shape> shapes;
-  std::vector<Contact> contacts;
+  ContactList contacts;
   uint32_t add(BodyKind kind, const Shape& shape, const Vec3& p, float mass) {
     Transform xf;
     xf.p = p;
