@@ -1,9 +1,9 @@
 // An array for the engine's largest arrays (the contacts, the solver's rows), grown in place: a
 // block of kMappedBytes or more is pages mapped for it alone, which the kernel grows by remapping the
-// pages it holds (mremap) instead of copying them into a new block touched for the first time. A
-// std::vector of 364-byte elements (a contact) took 8 ms to grow from 8,192 to 16,384 and 80-94 ms
-// from 65,536 to 131,072 on the 2-core VM; remapped, 0.2 and 1.1 ms. realloc does not promise it:
-// glibc keeps a block of a size it has seen freed in its heap, and copies it.
+// pages it holds (mremap) instead of copying them into a new block touched for the first time. The
+// push that grows a std::vector of 8,192 / 65,536 364-byte elements (a contact) took 7.8 / 67 ms on
+// the 2-core VM, remapped 0.02 / 1.1 ms (tests/bench/growth_bench.cpp). realloc does not promise
+// it: glibc keeps a block of a size it has seen freed in its heap, and copies it.
 //
 // Its elements are moved by their bytes: only for types with no member that points into the object
 // and nothing to do on destruction (a contact: its manifold, cache and impulses).
