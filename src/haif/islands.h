@@ -23,6 +23,8 @@ struct Island {
   static constexpr uint32_t kNoCarrier = ~0u;
   uint32_t carrier = kNoCarrier;
   Vec3 carrierV = Vec3::Zero(), carrierW = Vec3::Zero(), carrierAt = Vec3::Zero();
+  /// No contact and no joint: a body in flight, alone; the solve has nothing to do for it.
+  bool unconstrained() const { return contactCount == 0 && jointCount == 0; }
 };
 
 /// What island building needs of a contact, kept by the narrow phase in a flat array: the Contact

@@ -340,7 +340,7 @@ class World {
   std::vector<Joint> joints_;
   std::vector<JointConstraint> jointConstraints_;  // solver rows, grouped by island like constraints_
   // One slot per island with joints (jointSlot_: island -> slot, -1 none), not per island: a pour of
-  // 10^5 bodies starts as 10^5 islands, and a slot each held 59 MB of trees it never used.
+  // 10^5 bodies starts as 10^5 islands, whose slots held 59 MB of trees none of them used.
   std::vector<JointTree> jointTrees_;              // per slot: factorisation buffers, reused
   std::vector<TreeMotors> treeMotors_;             // per slot: its motors through its tree
   std::vector<int32_t> jointSlot_;                 // per island

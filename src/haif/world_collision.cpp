@@ -61,7 +61,7 @@ void World::updateBroadPhase() {
     const int32_t k = islandOfBody_[i];
     if (k < 0 || uint32_t(k) >= islandCount) return false;
     const Island& isl = islands_.islands[k];
-    return isl.bodyCount == 1 && isl.contactCount == 0 && isl.jointCount == 0;
+    return isl.bodyCount == 1 && isl.unconstrained();
   };
   // Bodies that left their fat boxes get new ones. Moved one by one, each costs a removal and an
   // insertion with rotations (serial); when many moved (a churning pile), the tree is built afresh

@@ -594,8 +594,7 @@ void World::solve(int iterations) {
   // and no constraint come last and have nothing to prepare, sweep or store: the batches end before
   // them (30,000 bodies in flight: the solve stage 4.6 -> 0.3 ms a step at 2 threads).
   uint32_t solved = m;
-  while (solved > 0 && islands_.islands[solved - 1].contactCount + islands_.islands[solved - 1].jointCount == 0)
-    --solved;
+  while (solved > 0 && islands_.islands[solved - 1].unconstrained()) --solved;
   batchStart_.clear();
   batchStart_.push_back(0);
   uint32_t acc = 0;
@@ -628,7 +627,7 @@ void World::summariseIterations() {
       factors += uint32_t(denseSystems_[denseOf_[k]].factors);
       unsettled = std::max(unsettled, uint32_t(denseSystems_[denseOf_[k]].unsettledSweeps));
     }
-    if (isl.contactCount + isl.jointCount == 0) continue;
+    if (isl.unconstrained()) continue;
     lo = std::min(lo, spare_.iterations[k]);
     hi = std::max(hi, spare_.iterations[k]);
     sum += spare_.iterations[k];
