@@ -25,6 +25,9 @@
 // the last round and left them 0.2 m deep), those below it in the next round, pairs collided
 // earlier in the step too (a box lifted 8 cm out of the box under it was left 0.107 m deep in the
 // one resting on it, a pair the first round had found apart), for up to six rounds.
+// Of the candidates, a pair whose overlap along its normal (a pair without points: along the line of
+// its centres) at the final poses already keeps it within its target is not collided either: two
+// support queries bound the depth a collision would find (collision/support.h).
 // Pairs that cannot end deeper than their target are never collided again: no point of a body
 // moves farther in a step than dt (|v| + |w| reach), which bounds how much deeper a pair can go
 // (a resting pile's pairs, and the pairs of a turned body with neighbours a hand's width away),
@@ -108,6 +111,9 @@ class TurnProjection {
   }
   /// Pairs the last apply collided again (a pair counts each time; not those its boxes told apart).
   uint32_t collisions() const { return collisions_; }
+  /// Pairs the last apply left without a collision where their boxes overlap: their overlap along
+  /// their normal (or the line of their centres) kept them within their target (reachBound).
+  uint32_t settledByReach() const { return settled_; }
 
  private:
   /// Bodies a chunk of the per-body scan takes (a few loads each).
@@ -125,6 +131,11 @@ class TurnProjection {
   bool begin(const TurnProjectionInput& in, const TurnProjectionSettings& settings);
   void scanBodies(uint32_t begin, uint32_t end);
   void scanPairs(uint32_t begin, uint32_t end);
+  void settleByReach(uint32_t contact);  // scanPairs' last word on a candidate
+  /// A bound on the depth a collision of the pair would find at the current poses (settleByReach).
+  float reachBound(uint32_t contact) const;
+  /// `depth` keeps the pair within its target and the least move: it is not moved.
+  bool withinTarget(uint32_t contact, float depth) const;
   bool collectCandidates();  // also notes which bodies need a final box, and the held bodies
   void boxBodies(uint32_t begin, uint32_t end);  // the bodies listed in toBox_
   void boxPairs();
@@ -155,8 +166,14 @@ class TurnProjection {
   float boxGap(const ContactEdge& pair) const;
   /// The depth of the pair's deepest point at the current poses (and its normal, from a to b). Boxes
   /// apart: minus their gap, without a collision (most pairs of a churning pile that find no point:
-  /// a pair that far apart is no deeper than that). No point: -inf.
-  float depthNow(const ContactEdge& pair, Vec3& normal, bool& collided) const;
+  /// a pair that far apart is no deeper than that). With `tryReach`, a reach bound within the target
+  /// (reachBound) is returned instead of colliding. No point: -inf.
+  enum class Probe : uint8_t { kBoxesApart, kBounded, kCollided };  // how depthNow found the depth
+  float depthNow(uint32_t contact, Vec3& normal, bool tryReach, Probe& how) const;
+  void count(Probe how) {
+    collisions_ += how == Probe::kCollided;
+    settled_ += how == Probe::kBounded;
+  }
   void noteDepth(uint32_t contact, float depth, const Vec3& shift);
   Vec3 relativeShift(uint32_t a, uint32_t b) const { return shift_[a] - shift_[b]; }
   bool takeable(const ContactEdge& pair) const;  // a round may collide it again
@@ -168,6 +185,7 @@ class TurnProjection {
   TurnProjectionSettings settings_;
   uint32_t moved_ = 0;
   uint32_t collisions_ = 0;
+  uint32_t settled_ = 0;
   uint32_t clock_ = 0;   // moves are numbered: a pair is collided again only if a body moved since
   uint32_t roundStart_ = 0;
   int round_ = 0;
@@ -177,13 +195,16 @@ class TurnProjection {
     float depth = 0.0f;  // of the deepest point (-inf: no point; depthNow)
     Vec3 shift = Vec3::Zero();  // the pair's relative shift at the round's start
     Vec3 normal = Vec3::UnitY();
-    bool collided = false;  // by the narrow phase, not told apart by the boxes
+    Probe how = Probe::kBoxesApart;
   };
 
   std::vector<uint8_t> turned_;     // per body: |w| dt above the angle
   std::vector<uint8_t> active_;     // per body: moved by the last round
   std::vector<float> spinReach_;    // per body: |w| reach, the fastest any point of it moves about its centre
-  std::vector<uint8_t> candidate_;  // per contact: 1 collide again, 2 if the final boxes overlap
+  // Per contact: 1 collide again, 2 if the final boxes overlap; kSettled (scanPairs only): the
+  // support bound keeps it within its target.
+  std::vector<uint8_t> candidate_;
+  static constexpr uint8_t kSettled = 3;
   // Per body: its tight box at the pose the solver left it (where boxed_): the stage only translates
   // bodies, so at any later pose it is this box moved by shift_.
   std::vector<uint8_t> boxed_;

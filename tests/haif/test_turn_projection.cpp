@@ -80,7 +80,8 @@ struct Scene {
 // Two balls 6 cm apart at the end of the step, the upper one having come down at 3 m/s (5 cm a
 // step): their boxes overlap, so only how far apart the pair began tells whether it may touch. The
 // narrow phase collided it with a margin of 10 cm (its base 2 cm and its closing speed) and found
-// no point: it cannot have closed 10 cm, and is not collided again. Known only 2 cm apart, it is.
+// no point: it cannot have closed 10 cm, and is not looked at again. Known only 2 cm apart, it is,
+// and the overlap along the line of centres (-6 cm) settles it without a collision.
 TEST(TurnProjection, APairFoundApartByItsClosingMarginIsNotCollidedAgain) {
   for (const float apart : {0.10f, 0.02f}) {
     Scene s;
@@ -89,7 +90,28 @@ TEST(TurnProjection, APairFoundApartByItsClosingMarginIsNotCollidedAgain) {
     s.bodies.v[high] = Vec3(-3.0f, -3.0f, 0).normalized() * 3.0f;
     s.pair(low, high, apart);
     EXPECT_EQ(s.apply(), 0u);
-    EXPECT_EQ(s.projection.collisions(), apart > 0.05f ? 0u : 1u) << apart;
+    EXPECT_EQ(s.projection.settledByReach(), apart > 0.05f ? 0u : 1u) << apart;
+    EXPECT_EQ(s.projection.collisions(), 0u) << apart;
+  }
+}
+
+// A box spinning at 12 rad/s (0.2 rad a step) on the ground, 5 mm deep at the step's start: its
+// pair is a candidate. Ending 5 mm
+// deep, its overlap along the normal bounds it within the 1 cm keep depth: settled, not collided,
+// not moved. Ending 4 cm deep, it is collided and lifted to the keep depth (and checked once more).
+TEST(TurnProjection, ATurnedPairThatEndsShallowIsSettledByItsReach) {
+  const TurnProjectionSettings d;
+  for (const float depth : {0.005f, 0.04f}) {
+    Scene s;
+    const uint32_t ground = s.add(BodyKind::Static, Shape::box(Vec3(10, 0.5f, 10)), Vec3(0, -0.5f, 0), 0);
+    const uint32_t box = s.add(BodyKind::Dynamic, Shape::box(Vec3::Constant(0.5f)), Vec3(0, 0.5f - depth, 0), 2);
+    s.pairAt(ground, box, Vec3(0, -0.005f, 0), Vec3::UnitY(), 0.005f);  // the step began 5 mm deep
+    s.bodies.w[box] = Vec3(0, 0, 12.0f);
+    const bool deep = depth > 0.02f;
+    EXPECT_EQ(s.apply(), deep ? 1u : 0u) << depth;
+    EXPECT_EQ(s.projection.settledByReach(), deep ? 0u : 1u) << depth;
+    EXPECT_EQ(s.projection.collisions(), deep ? 2u : 0u) << depth;
+    EXPECT_NEAR(s.bodies.xf[box].p.y(), deep ? 0.5f - d.keep : 0.5f - depth, 1e-5f) << depth;
   }
 }
 
@@ -239,7 +261,8 @@ TEST(TurnProjection, AMoveBringsTheHigherPairsOfItsBodyIntoTheSameRound) {
 // touches. Its pairs with them are not collided again: no point of it moved more than 1 cm, and a
 // pair that touched cannot now be deeper than that, nor than the 1 cm it may keep. Only its ground
 // pair is, to see that it is out (2 collisions). A neighbour pressed 5 mm into it may now be 1.5 cm
-// deep: that pair is collided again (3), and left, being no deeper than it was.
+// deep: that pair is looked at again, and left, being no deeper than it was: its overlap along its
+// normal (5 mm) says so without a collision.
 TEST(TurnProjection, APairItsMovesCannotHaveCarriedPastItsTargetIsNotCollidedAgain) {
   for (const float pressed : {0.0f, 0.005f}) {
     Scene s;
@@ -254,7 +277,8 @@ TEST(TurnProjection, APairItsMovesCannotHaveCarriedPastItsTargetIsNotCollidedAga
     s.pairAt(box, right, Vec3(0.5f, 0.5f, 0), Vec3::UnitX(), 0.0f);
     EXPECT_EQ(s.apply(), 1u) << pressed;
     EXPECT_NEAR(s.bodies.xf[box].p.y(), 0.47f, 1e-4f);
-    EXPECT_EQ(s.projection.collisions(), pressed > 0.0f ? 3u : 2u) << pressed;
+    EXPECT_EQ(s.projection.collisions(), 2u) << pressed;
+    EXPECT_EQ(s.projection.settledByReach(), pressed > 0.0f ? 1u : 0u) << pressed;
     EXPECT_EQ(s.bodies.xf[left].p, Vec3(-1.0f + pressed, 0.5f, 0));
     EXPECT_EQ(s.bodies.xf[right].p, Vec3(1.0f, 0.5f, 0));
   }
