@@ -1,9 +1,12 @@
 // Google Benchmark of the narrow phase: every pair of shape types (sphere, box, capsule, convex
 // hull, and a mesh triangle as the second shape), each separated beyond the margin, touching, and
-// deep, reporting ns per collide() call (issue 27). Timings are medians of repetitions:
+// deep, reporting ns per collide() call (issue 27); and per pair the depth bound from two support
+// queries (reach_bound/*), which the turn projection takes instead of a collision where it suffices.
+// Timings are medians of repetitions:
 //   ./build/bench_narrow_phase --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include "collision/collide.h"
 #include "collision/convex_hull.h"
+#include "collision/support.h"
 #include "collision/triangle_mesh.h"
 
 #include <benchmark/benchmark.h>
@@ -85,6 +88,21 @@ void collidePair(benchmark::State& state, Piece a, Piece b, float gap) {
   timeCollide(state, a.shape, xa, b.shape, xb);
 }
 
+// The same pair's depth bound along its normal (collision/support.h): what the turn projection pays
+// for a candidate it settles instead of colliding.
+void reachPair(benchmark::State& state, Piece a, Piece b, float gap) {
+  Transform xa, xb;
+  xa.q = a.q;
+  xb.q = Quat(Eigen::AngleAxisf(0.3f, Vec3::UnitY())) * b.q;
+  xb.p = Vec3(0.05f, a.up + b.down + gap, 0.03f);
+  float bound = 0.0f;
+  for (auto _ : state) {
+    bound = depthBoundFromOverlap(overlapAlong(a.shape, xa, b.shape, xb, Vec3::UnitY()));
+    benchmark::DoNotOptimize(bound);
+  }
+  state.counters["bound_mm"] = 1000.0 * bound;
+}
+
 // A mesh is static and second: the shape rests on the triangle (in the plane y = 0) by `gap`.
 void collideOnTriangle(benchmark::State& state, Piece above, Piece tri, float gap) {
   Transform xa, xb;
@@ -104,6 +122,9 @@ void registerAll() {
   for (const Piece& p : ps)
     for (const Setting& s : kSettings)
       benchmark::RegisterBenchmark((p.name + "-" + tri.name + "/" + s.name).c_str(), collideOnTriangle, p, tri, s.gap);
+  for (size_t i = 0; i < ps.size(); ++i)
+    for (size_t j = i; j < ps.size(); ++j)
+      benchmark::RegisterBenchmark(("reach_bound/" + ps[i].name + "-" + ps[j].name).c_str(), reachPair, ps[i], ps[j], -0.001f);
 }
 
 }  // namespace
