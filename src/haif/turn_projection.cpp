@@ -56,8 +56,7 @@ float TurnProjection::leastMove(const ContactEdge& e) const {
 
 bool TurnProjection::mayExceed(uint32_t c) const {
   const ContactEdge& e = in_.edges[c];
-  const float bound = known_[c] + (relativeShift(e.a, e.b) - knownShift_[c]).norm() + kBoundRounding;
-  return bound > target(c) + leastMove(e);
+  return !withinTarget(c, known_[c] + (relativeShift(e.a, e.b) - knownShift_[c]).norm() + kBoundRounding);
 }
 
 void TurnProjection::noteDepth(uint32_t c, float depth, const Vec3& shift) {
@@ -193,7 +192,6 @@ bool TurnProjection::collectCandidates() {
   const uint32_t n = uint32_t(bodies.size()), pairCount = uint32_t(in_.contacts->size());
   bool any = false;
   boxPairs_.clear();
-  settled_ = 0;
   for (uint32_t c = 0; c < pairCount; ++c) {
     if (candidate_[c] == kSettled) {
       candidate_[c] = 0;
