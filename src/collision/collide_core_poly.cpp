@@ -165,6 +165,11 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
         const float lower = std::max({std::min(above[0][f1], above[isSeg][f1]),
                                       std::min(above[0][f2], above[isSeg][f2]), nearest});
         if (lower > 0.0f && lower >= cut) continue;
+        // From the closest point of an edge the core lies in the edge's normal cone, a positive sum
+        // of its two face normals: above one of the two planes at least. An edge the core is
+        // nowhere above either face of is not nearest (a sphere off a hull's corner tried every
+        // edge, none ruled out before one was found).
+        if (std::max({above[0][f1], above[isSeg][f1], above[0][f2], above[isSeg][f2]}) <= 0.0f) continue;
       }
       const Vec3& a = P.verts[P.edges[k].first];
       const Vec3& b = P.verts[P.edges[k].second];
