@@ -43,18 +43,25 @@ inline uint32_t laneBits(GaussI m) {
 // every vertex on each axis they try (one vertex after another, each min waiting on the last, that
 // was a fifth of a hull pair's time). Past kMaxLaneVerts a hull takes PolyView's loops.
 constexpr int kMaxLaneVerts = 64;
+static_assert(ConvexHull::kVertexLaneWidth == kGaussLanes, "a hull's vertex lanes are read kGaussLanes at a time");
 struct VertexLanes {
-  alignas(32) float x[kMaxLaneVerts], y[kMaxLaneVerts], z[kMaxLaneVerts];
+  const float *x = nullptr, *y = nullptr, *z = nullptr;
+  alignas(32) float own[3][kMaxLaneVerts];  // a box's (or a hull's made without them), filled per pair
   const PolyView* poly = nullptr;
   int lanes = 0;  // 0: too many vertices
 
   explicit VertexLanes(const PolyView& P) : poly(&P) {
     if (P.numVerts > kMaxLaneVerts) return;
-    lanes = (P.numVerts + kGaussLanes - 1) / kGaussLanes * kGaussLanes;
+    lanes = ConvexHull::vertexLaneCount(size_t(P.numVerts));
+    if (P.vertexLanes != nullptr) {  // a hull's, made once
+      x = P.vertexLanes, y = x + lanes, z = y + lanes;
+      return;
+    }
     for (int i = 0; i < lanes; ++i) {
       const Vec3& v = P.verts[i < P.numVerts ? i : 0];  // the padding repeats a vertex
-      x[i] = v.x(), y[i] = v.y(), z[i] = v.z();
+      own[0][i] = v.x(), own[1][i] = v.y(), own[2][i] = v.z();
     }
+    x = own[0], y = own[1], z = own[2];
   }
   GaussF project(int j, const Vec3& d) const {
     GaussF px, py, pz;

@@ -37,6 +37,14 @@ struct ConvexHull {
   /// The two faces beside each edge, in the order of `edges` (empty when some edge does not have
   /// exactly two): the separating-axis test skips edge pairs that cannot meet (collide_polytope.cpp).
   std::vector<std::pair<uint32_t, uint32_t>> edgeFaces;
+  /// The vertices by coordinate, kVertexLaneWidth to a vector: every x, then every y, then every z,
+  /// each padded with vertex 0 to vertexLaneCount(vertices) (the separating-axis tests read them a
+  /// vector at a time; made here once, not for every pair).
+  std::vector<float> vertexLanes;
+  static constexpr int kVertexLaneWidth = 8;
+  static int vertexLaneCount(size_t vertices) {
+    return int((vertices + kVertexLaneWidth - 1) / kVertexLaneWidth * kVertexLaneWidth);
+  }
   Vec3 centroid = Vec3::Zero();   ///< of the solid, in the input frame (vertices are already shifted by -centroid)
   float volume = 0.0f;
   Mat3 inertiaPerDensity = Mat3::Zero();  ///< about the centroid, for density 1
