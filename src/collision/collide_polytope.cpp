@@ -46,7 +46,7 @@ constexpr int kMaxLaneVerts = 64;
 static_assert(ConvexHull::kVertexLaneWidth == kGaussLanes, "a hull's vertex lanes are read kGaussLanes at a time");
 struct VertexLanes {
   const float *x = nullptr, *y = nullptr, *z = nullptr;
-  alignas(32) float own[3][kMaxLaneVerts];  // a box's (or a hull's made without them), filled per pair
+  alignas(32) float own[3 * kMaxLaneVerts];  // a box's (or a hull's made without them), filled per pair
   const PolyView* poly = nullptr;
   int lanes = 0;  // 0: too many vertices
 
@@ -57,11 +57,8 @@ struct VertexLanes {
       x = P.vertexLanes, y = x + lanes, z = y + lanes;
       return;
     }
-    for (int i = 0; i < lanes; ++i) {
-      const Vec3& v = P.verts[i < P.numVerts ? i : 0];  // the padding repeats a vertex
-      own[0][i] = v.x(), own[1][i] = v.y(), own[2][i] = v.z();
-    }
-    x = own[0], y = own[1], z = own[2];
+    ConvexHull::fillVertexLanes(P.verts, size_t(P.numVerts), own);
+    x = own, y = x + lanes, z = y + lanes;
   }
   GaussF project(int j, const Vec3& d) const {
     GaussF px, py, pz;

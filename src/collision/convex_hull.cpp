@@ -334,11 +334,8 @@ std::shared_ptr<ConvexHull> buildConvexHull(const std::vector<Vec3>& points, std
     }
     hull->edgeFaces.emplace_back(fs[0], fs[1]);
   }
-  const int lanes = ConvexHull::vertexLaneCount(hull->vertices.size());
-  hull->vertexLanes.resize(3 * size_t(lanes));
-  for (int k = 0; k < 3; ++k)
-    for (int i = 0; i < lanes; ++i)
-      hull->vertexLanes[size_t(k * lanes + i)] = hull->vertices[i < int(hull->vertices.size()) ? size_t(i) : 0][k];
+  hull->vertexLanes.resize(3 * size_t(ConvexHull::vertexLaneCount(hull->vertices.size())));
+  ConvexHull::fillVertexLanes(hull->vertices.data(), hull->vertices.size(), hull->vertexLanes.data());
   hull->centroid = shift.cast<float>();
   hull->volume = float(vol);
   hull->inertiaPerDensity = inertia.cast<float>();

@@ -45,6 +45,13 @@ struct ConvexHull {
   static int vertexLaneCount(size_t vertices) {
     return int((vertices + kVertexLaneWidth - 1) / kVertexLaneWidth * kVertexLaneWidth);
   }
+  /// Writes `count` vertices by coordinate into `out` (3 * vertexLaneCount(count) floats), the
+  /// padding repeating vertex 0 so that a lane's min and max are those of the real vertices.
+  static void fillVertexLanes(const Vec3* verts, size_t count, float* out) {
+    const size_t lanes = size_t(vertexLaneCount(count));
+    for (size_t k = 0; k < 3; ++k)
+      for (size_t i = 0; i < lanes; ++i) out[k * lanes + i] = verts[i < count ? i : 0][int(k)];
+  }
   Vec3 centroid = Vec3::Zero();   ///< of the solid, in the input frame (vertices are already shifted by -centroid)
   float volume = 0.0f;
   Mat3 inertiaPerDensity = Mat3::Zero();  ///< about the centroid, for density 1

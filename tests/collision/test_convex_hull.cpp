@@ -256,7 +256,6 @@ TEST(HullCollision, HullVertexJustAboveHugeBoxIsAGapNotAPenetration) {
   }
 }
 
-
 // The separating-axis tests read a hull's vertices by coordinate, made once when the hull is built.
 // They must hold every vertex, padded with vertex 0, and give the same contacts as lanes made per pair.
 TEST(HullCollision, VertexLanesMadeOnceGiveTheContactsOfLanesMadePerPair) {
