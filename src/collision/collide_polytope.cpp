@@ -141,23 +141,45 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
   const Mat3 Rt = R.transpose();
   const VertexLanes vertsA(A), vertsB(B);
 
-  // Faces of A: how far B's vertices stay above each plane.
+  // How far B's vertices stay above a plane of A, and A's above a plane of B (in A's frame).
+  auto aboveFaceA = [&](int f) {
+    const ConvexHull::Face& F = A.faces[f];
+    return vertsB.minDot(Rt * F.normal) + t.dot(F.normal) - F.offset;
+  };
+  auto aboveFaceB = [&](int f) {
+    const ConvexHull::Face& F = B.faces[f];
+    const Vec3 n = R * F.normal;
+    return vertsA.minDot(n) - (F.offset + t.dot(n));
+  };
+  // The face that kept the pair apart last time first (Manifold::apartFace; B's faces numbered
+  // after A's): the loops below would stop at it or before it, with the same answer.
+  const uint32_t apart = m.apartFace;
+  m.apartFace = kNoApartFace;
+  if (apart < uint32_t(A.numFaces + B.numFaces)) {
+    const int f = int(apart);
+    if ((f < A.numFaces ? aboveFaceA(f) : aboveFaceB(f - A.numFaces)) > margin) {
+      m.apartFace = apart;
+      return 0;
+    }
+  }
   float sepA = -1e30f;
   int faceA = -1;
   for (int f = 0; f < A.numFaces; ++f) {
-    const ConvexHull::Face& F = A.faces[f];
-    const float s = vertsB.minDot(Rt * F.normal) + t.dot(F.normal) - F.offset;
-    if (s > margin) return 0;
+    const float s = aboveFaceA(f);
+    if (s > margin) {
+      m.apartFace = uint32_t(f);
+      return 0;
+    }
     if (s > sepA) { sepA = s; faceA = f; }
   }
-  // Faces of B, expressed in A's frame.
   float sepB = -1e30f;
   int faceB = -1;
   for (int f = 0; f < B.numFaces; ++f) {
-    const ConvexHull::Face& F = B.faces[f];
-    const Vec3 n = R * F.normal;
-    const float s = vertsA.minDot(n) - (F.offset + t.dot(n));
-    if (s > margin) return 0;
+    const float s = aboveFaceB(f);
+    if (s > margin) {
+      m.apartFace = uint32_t(A.numFaces + f);
+      return 0;
+    }
     if (s > sepB) { sepB = s; faceB = f; }
   }
   // Edge pairs. With the faces beside every edge known, only pairs whose edges can touch are tried:

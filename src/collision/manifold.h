@@ -9,6 +9,8 @@
 namespace haif {
 
 inline constexpr int kMaxManifoldPoints = 4;
+/// Manifold::apartFace when no face is noted.
+inline constexpr uint32_t kNoApartFace = 0xFFFFFFFFu;
 
 struct ContactPoint {
   Vec3 position = Vec3::Zero();  ///< world point midway between the two surfaces
@@ -20,6 +22,11 @@ struct ContactPoint {
 struct Manifold {
   int count = 0;
   ContactPoint points[kMaxManifoldPoints];
+  /// The face whose plane last kept this pair farther apart than the margin, numbered by the pair
+  /// routine that noted it (collidePolyPoly, collideCorePoly), or kNoApartFace. The routine tests it
+  /// first: most pairs the broad phase keeps in a pile are apart, and the same face keeps them apart
+  /// step after step. It only orders the tests, so any value gives the same contacts.
+  uint32_t apartFace = kNoApartFace;
   /// Depth of the deepest point; 0 when no point overlaps.
   float deepest() const {
     float d = 0.0f;

@@ -132,7 +132,7 @@ Quat randomTurn(std::mt19937& rng) {
   return q;
 }
 
-std::vector<PosedPair> pilePoses(const Piece& a, const Piece& b, uint32_t seed) {
+std::vector<PosedPair> pilePoses(const Piece& a, const Piece& b, uint32_t seed, float depth = kPileDepth) {
   std::mt19937 rng(seed);
   std::vector<PosedPair> out;
   Manifold m;
@@ -151,8 +151,8 @@ std::vector<PosedPair> pilePoses(const Piece& a, const Piece& b, uint32_t seed) 
       pp.xb.p = mid * d;
       (collide(a.shape, pp.xa, b.shape, pp.xb, 0.0f, m) > 0 ? lo : hi) = mid;
     }
-    pp.xb.p = (lo - kPileDepth) * d;
-    if (collide(a.shape, pp.xa, b.shape, pp.xb, 0.0f, m) == 0) continue;  // a pose the bisection missed
+    pp.xb.p = (lo - depth) * d;
+    if (depth > 0.0f && collide(a.shape, pp.xa, b.shape, pp.xb, 0.0f, m) == 0) continue;  // a pose the bisection missed
     out.push_back(pp);
   }
   return out;
@@ -166,6 +166,25 @@ void collidePile(benchmark::State& state, Piece a, Piece b) {
   for (auto _ : state) {
     points += collide(a.shape, poses[i].xa, b.shape, poses[i].xb, kMargin, m);
     benchmark::DoNotOptimize(m);
+    if (++i == poses.size()) i = 0;
+  }
+  state.counters["points"] = benchmark::Counter(double(points), benchmark::Counter::kAvgIterations);
+}
+
+// Most pairs a pile's broad phase keeps are apart: their boxes overlap, the shapes are a little
+// farther apart than the margin. The pile's poses moved kApartGap out from where they touch, each
+// pose with its own manifold as each pair in the world has: `noted` keeps the face a pair routine
+// noted as keeping it apart (Manifold::apartFace) from one visit to the next, `fresh` forgets it.
+constexpr float kApartGap = kMargin + 0.01f;
+void collidePileApart(benchmark::State& state, Piece a, Piece b, bool noted) {
+  const std::vector<PosedPair> poses = pilePoses(a, b, 68, -kApartGap);
+  std::vector<Manifold> ms(poses.size());
+  size_t i = 0;
+  int64_t points = 0;
+  for (auto _ : state) {
+    if (!noted) ms[i].apartFace = kNoApartFace;
+    points += collide(a.shape, poses[i].xa, b.shape, poses[i].xb, kMargin, ms[i]);
+    benchmark::DoNotOptimize(ms[i]);
     if (++i == poses.size()) i = 0;
   }
   state.counters["points"] = benchmark::Counter(double(points), benchmark::Counter::kAvgIterations);
@@ -188,6 +207,11 @@ void registerAll() {
   for (size_t i = 0; i < ps.size(); ++i)
     for (size_t j = i; j < ps.size(); ++j)
       benchmark::RegisterBenchmark(("pile/" + ps[i].name + "-" + ps[j].name).c_str(), collidePile, ps[i], ps[j]);
+  for (size_t i = 0; i < ps.size(); ++i)
+    for (size_t j = i; j < ps.size(); ++j)
+      for (const bool noted : {false, true})
+        benchmark::RegisterBenchmark(("pile_apart/" + ps[i].name + "-" + ps[j].name + (noted ? "/noted" : "/fresh")).c_str(),
+                                     collidePileApart, ps[i], ps[j], noted);
 }
 
 }  // namespace

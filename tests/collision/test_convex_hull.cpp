@@ -1,6 +1,7 @@
 // Convex hull construction (topology, mass properties, errors) and hull collisions.
 #include "collision/convex_hull.h"
 #include "collision/polytope.h"
+#include "collision/support.h"
 #include "collision_test_util.h"
 
 #include <limits>
@@ -302,6 +303,93 @@ TEST(HullCollision, VertexLanesMadeOnceGiveTheContactsOfLanesMadePerPair) {
     }
   }
   EXPECT_GT(touching, 300);  // most poses touch: the clipping, not only the early outs, is compared
+}
+
+// A pair kept apart by a face notes it in its manifold (Manifold::apartFace), and the next collision
+// tests that face first. The note only orders the tests: any value, valid or not, must give the
+// contacts of a manifold without one; and a face noted must keep the pair apart beyond the margin.
+TEST(HullCollision, ApartFaceNotedKeepsThePairApartAndChangesNoContact) {
+  std::mt19937 rng(69);
+  std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+  std::normal_distribution<float> g(0.0f, 1.0f);
+  auto turn = [&] {
+    Quat q(g(rng), g(rng), g(rng), g(rng));
+    return q.normalized();
+  };
+  std::vector<Vec3> pa, pb;
+  for (int i = 0; i < 14; ++i) pa.emplace_back(u(rng), u(rng), u(rng));
+  for (int i = 0; i < 20; ++i) pb.emplace_back(u(rng), u(rng), u(rng));
+  auto ha = mustBuild(pa), hb = mustBuild(pb);
+  ASSERT_TRUE(ha && hb);
+  // Hull-hull, box-hull and hull-box (collide swaps it), capsule-hull, sphere-hull, capsule-box.
+  const Shape hullA = Shape::convexHull(ha), hullB = Shape::convexHull(hb), box = Shape::box(Vec3(0.3f, 0.2f, 0.4f));
+  const Shape capsule = Shape::capsule(0.15f, 0.3f), sphere = Shape::sphere(0.25f);
+  const std::pair<const Shape*, const Shape*> pairs[] = {{&hullA, &hullB}, {&box, &hullB}, {&hullA, &box},
+                                                         {&capsule, &hullB}, {&sphere, &hullA}, {&capsule, &box}};
+  // The polyhedra whose faces a note numbers, in the pair routine's order (collide puts the box
+  // first; a core's routine numbers the polyhedron's faces only).
+  const detail::BoxPoly boxPoly(box.halfExtents);
+  auto faces = [&](const Shape* s) { return s == &box ? boxPoly.view() : detail::hullView(*s->hull); };
+  auto routineOrder = [&](const Shape* sa, const Shape* sb) -> std::pair<const Shape*, const Shape*> {
+    if (sa == &capsule || sa == &sphere) return {sb, nullptr};
+    return sb == &box ? std::make_pair(sb, sa) : std::make_pair(sa, sb);
+  };
+  const float margin = 0.02f;
+  // How far the other shape stays above face f's plane (the routine's numbering), from the shapes'
+  // supports in world space: a noted face must keep the pair apart beyond the margin.
+  auto aboveNotedFace = [&](const Shape* sa, const Transform& xa, const Shape* sb, const Transform& xb, uint32_t f) {
+    const auto [first, second] = routineOrder(sa, sb);
+    const detail::PolyView p1 = faces(first);
+    const bool inFirst = f < uint32_t(p1.numFaces);
+    const Shape* owner = inFirst ? first : second;
+    const Shape* other = owner == sa ? sb : sa;
+    const Transform& xo = owner == sa ? xa : xb;
+    const Transform& xt = owner == sa ? xb : xa;
+    const ConvexHull::Face& F = inFirst ? p1.faces[f] : faces(second).faces[f - uint32_t(p1.numFaces)];
+    const Vec3 n = xo.q * F.normal;
+    return -supportAlong(*other, xt, -n) - (F.offset + n.dot(xo.p));
+  };
+  int noted = 0, apart = 0, touching = 0;
+  for (const auto& [sa, sb] : pairs) {
+    for (int k = 0; k < 400; ++k) {
+      Transform xa, xb;
+      xa.q = turn();
+      xb.q = turn();
+      xa.p = Vec3(u(rng), u(rng), u(rng));
+      xb.p = xa.p + Vec3(u(rng), u(rng), u(rng)) * 2.5f;
+      Manifold fresh;
+      const int n = collide(*sa, xa, *sb, xb, margin, fresh);
+      touching += n > 0;
+      apart += n == 0;
+      if (fresh.apartFace != kNoApartFace) {
+        ++noted;
+        EXPECT_EQ(n, 0);
+        EXPECT_GT(aboveNotedFace(sa, xa, sb, xb, fresh.apartFace), margin - 1e-5f);
+        // Noted and collided again at the same poses, and at poses moved a little: the same contacts.
+        Manifold again = fresh;
+        EXPECT_EQ(collide(*sa, xa, *sb, xb, margin, again), 0);
+        EXPECT_EQ(again.apartFace, fresh.apartFace);
+      }
+      // Any note, for a pose it may not fit: the contacts of a fresh manifold.
+      for (const uint32_t note : {fresh.apartFace, uint32_t(k % 40), uint32_t(k % 7), kNoApartFace, 0x7FFFFFFFu}) {
+        Manifold m;
+        m.apartFace = note;
+        ASSERT_EQ(collide(*sa, xa, *sb, xb, margin, m), n) << "note " << note;
+        for (int i = 0; i < n; ++i) {
+          EXPECT_EQ(m.points[i].id, fresh.points[i].id);
+          EXPECT_EQ(m.points[i].depth, fresh.points[i].depth);
+          EXPECT_EQ(m.points[i].position, fresh.points[i].position);
+          EXPECT_EQ(m.points[i].normal, fresh.points[i].normal);
+        }
+        if (m.apartFace != kNoApartFace) {
+          EXPECT_GT(aboveNotedFace(sa, xa, sb, xb, m.apartFace), margin - 1e-5f);
+        }
+      }
+    }
+  }
+  EXPECT_GT(noted, 600);     // most apart poses are kept apart by a face
+  EXPECT_GT(touching, 300);  // and the clipping and closest-feature paths are compared too
+  EXPECT_GT(apart, noted);   // some apart poses are told apart by an edge or the closest features
 }
 
 }  // namespace
