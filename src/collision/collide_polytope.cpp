@@ -107,8 +107,10 @@ struct VertexLanes {
 constexpr float kEdgeGapTol = 1e-3f;
 constexpr int kMaxIncident = 64;
 
-// Among the edges parallel to edge e, the one farthest along d (its midpoint).
+// Among the edges parallel to edge e, the one farthest along d (its midpoint). Without parallel edges
+// (most hulls) that is e: the search was a tenth of a pile's hull pair.
 int supportingEdge(const PolyView& P, int e, const Vec3& d) {
+  if (!P.parallelEdges) return e;
   const Vec3 dir = (P.verts[P.edges[e].second] - P.verts[P.edges[e].first]).normalized();
   int best = e;
   float bestDot = -1e30f;
@@ -116,7 +118,7 @@ int supportingEdge(const PolyView& P, int e, const Vec3& d) {
     const Vec3& a = P.verts[P.edges[k].first];
     const Vec3& b = P.verts[P.edges[k].second];
     const Vec3 dk = b - a;
-    if (dk.cross(dir).squaredNorm() > 1e-6f * dk.squaredNorm()) continue;
+    if (!alongEdge(dk, dir)) continue;
     const float x = d.dot(a + b);
     if (x > bestDot) { bestDot = x; best = k; }
   }

@@ -3,6 +3,7 @@
 // replace the faces it sees by a cone over their horizon. Then merge coplanar triangles into
 // polygons and integrate mass properties over a fan of tetrahedra.
 #include "collision/convex_hull.h"
+#include "collision/geometry.h"
 
 #include <algorithm>
 #include <cmath>
@@ -333,6 +334,13 @@ std::shared_ptr<ConvexHull> buildConvexHull(const std::vector<Vec3>& points, std
       break;
     }
     hull->edgeFaces.emplace_back(fs[0], fs[1]);
+  }
+  hull->parallelEdges = false;
+  for (size_t e = 0; e < hull->edges.size() && !hull->parallelEdges; ++e) {
+    const auto [a, b] = hull->edges[e];
+    const Vec3 dir = (hull->vertices[b] - hull->vertices[a]).normalized();
+    for (size_t k = 0; k < hull->edges.size() && !hull->parallelEdges; ++k)
+      hull->parallelEdges = k != e && detail::alongEdge(hull->vertices[hull->edges[k].second] - hull->vertices[hull->edges[k].first], dir);
   }
   hull->vertexLanes.resize(3 * size_t(ConvexHull::vertexLaneCount(hull->vertices.size())));
   ConvexHull::fillVertexLanes(hull->vertices.data(), hull->vertices.size(), hull->vertexLanes.data());

@@ -80,6 +80,7 @@ PolyView hullView(const ConvexHull& h) {
   p.numEdges = int(h.edges.size());
   p.numAxisEdges = int(h.axisEdges);
   if (h.edgeFaces.size() == h.edges.size()) p.edgeFaces = h.edgeFaces.data();
+  p.parallelEdges = h.parallelEdges;
   if (h.vertexLanes.size() == 3 * size_t(ConvexHull::vertexLaneCount(h.vertices.size())))
     p.vertexLanes = h.vertexLanes.data();
   return p;

@@ -28,6 +28,8 @@ struct PolyView {
   bool flat = false;
   /// The two faces beside each of the numEdges edges, or null (then every edge direction is tried).
   const std::pair<uint32_t, uint32_t>* edgeFaces = nullptr;
+  /// Some edge runs along another (ConvexHull::parallelEdges); a box's do.
+  bool parallelEdges = true;
   /// The vertices by coordinate (ConvexHull::vertexLanes), or null: made per pair where needed.
   const float* vertexLanes = nullptr;
 

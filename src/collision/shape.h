@@ -37,6 +37,9 @@ struct ConvexHull {
   /// The two faces beside each edge, in the order of `edges` (empty when some edge does not have
   /// exactly two): the separating-axis test skips edge pairs that cannot meet (collide_polytope.cpp).
   std::vector<std::pair<uint32_t, uint32_t>> edgeFaces;
+  /// Some edge runs along another (alongEdge): an edge contact must then look among them for the one
+  /// that supports the hull. Most hulls have none, and the edge an axis came from is that one.
+  bool parallelEdges = true;
   /// The vertices by coordinate, kVertexLaneWidth to a vector: every x, then every y, then every z,
   /// each padded with vertex 0 to vertexLaneCount(vertices) (the separating-axis tests read them a
   /// vector at a time; made here once, not for every pair).

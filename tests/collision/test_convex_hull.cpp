@@ -305,6 +305,48 @@ TEST(HullCollision, VertexLanesMadeOnceGiveTheContactsOfLanesMadePerPair) {
   EXPECT_GT(touching, 300);  // most poses touch: the clipping, not only the early outs, is compared
 }
 
+// An edge contact takes, among the edges parallel to the one its axis came from, the one that supports
+// the shape. A hull with no two edges parallel skips that search: the same contacts as searching.
+TEST(HullCollision, HullsWithoutParallelEdgesSkipTheSupportingEdgeSearch) {
+  EXPECT_TRUE(mustBuild(cubeCorners(Vec3(0.3f, 0.2f, 0.1f)))->parallelEdges);
+  std::mt19937 rng(70);
+  std::uniform_real_distribution<float> u(-0.5f, 0.5f);
+  std::normal_distribution<float> g(0.0f, 1.0f);
+  auto turn = [&] {
+    Quat q(g(rng), g(rng), g(rng), g(rng));
+    return q.normalized();
+  };
+  int skipping = 0, edgeContacts = 0;
+  for (int h = 0; h < 6; ++h) {
+    std::vector<Vec3> pa, pb;
+    for (int i = 0; i < 8 + 3 * h; ++i) pa.emplace_back(u(rng), u(rng), u(rng));
+    for (int i = 0; i < 10 + 2 * h; ++i) pb.emplace_back(u(rng), u(rng), u(rng));
+    auto a = mustBuild(pa), b = mustBuild(pb);
+    ASSERT_TRUE(a && b);
+    skipping += !a->parallelEdges;
+    const detail::PolyView own = detail::hullView(*a), other = detail::hullView(*b);
+    detail::PolyView searching = own;
+    searching.parallelEdges = true;
+    for (int k = 0; k < 300; ++k) {
+      Transform xa, xb;
+      xa.q = turn();
+      xb.q = turn();
+      xb.p = Vec3(u(rng), u(rng), u(rng)) * 1.6f;
+      Manifold m1, m2;
+      const int n1 = detail::collidePolyPoly(own, xa, other, xb, 0.02f, m1);
+      ASSERT_EQ(detail::collidePolyPoly(searching, xa, other, xb, 0.02f, m2), n1);
+      edgeContacts += n1 == 1 && (m1.points[0].id & 0x40000000u) != 0;
+      for (int i = 0; i < n1; ++i) {
+        EXPECT_EQ(m1.points[i].id, m2.points[i].id);
+        EXPECT_EQ(m1.points[i].position, m2.points[i].position);
+        EXPECT_EQ(m1.points[i].depth, m2.points[i].depth);
+      }
+    }
+  }
+  EXPECT_GE(skipping, 4);        // random clouds have no parallel edges
+  EXPECT_GT(edgeContacts, 100);  // and the edge contacts are among the poses compared
+}
+
 // A pair kept apart by a face notes it in its manifold (Manifold::apartFace), and the next collision
 // tests that face first. The note only orders the tests: any value, valid or not, must give the
 // contacts of a manifold without one; and a face noted must keep the pair apart beyond the margin.
