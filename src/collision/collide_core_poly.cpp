@@ -111,16 +111,16 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
   // the broad phase keeps are this far apart, and the closest-feature search costs a pass over
   // every face and edge. The ends' heights over the face planes are kept (up to kMaxHeights faces)
   // for the closest-point search below.
-  // The face that kept the pair apart last time first (Manifold::apartFace): the loop below would
+  // The face that kept the pair apart last time first (Manifold::apartAxis): the loop below would
   // stop at it or before it, with the same answer.
   auto beyondFace = [&](int f) {
     const ConvexHull::Face& F = P.faces[f];
     return std::min(F.normal.dot(c0), F.normal.dot(c1)) - F.offset - r;
   };
-  const uint32_t apart = m.apartFace;
-  m.apartFace = kNoApartFace;
+  const uint32_t apart = m.apartAxis;
+  m.apartAxis = kNoApartAxis;
   if (apart < uint32_t(P.numFaces) && beyondFace(int(apart)) > margin) {
-    m.apartFace = apart;
+    m.apartAxis = apart;
     return 0;
   }
   const bool heightsKept = P.numFaces <= kMaxHeights;
@@ -138,7 +138,7 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
     }
     const float s = std::min(d0, d1) - F.offset - r;
     if (s > margin) {
-      m.apartFace = uint32_t(f);
+      m.apartAxis = uint32_t(f);
       return 0;
     }
     if (s > bestF) { bestF = s; face = f; }

@@ -153,15 +153,38 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
     const Vec3 n = R * F.normal;
     return vertsA.minDot(n) - (F.offset + t.dot(n));
   };
-  // The face that kept the pair apart last time first (Manifold::apartFace; B's faces numbered
-  // after A's): the loops below would stop at it or before it, with the same answer.
-  const uint32_t apart = m.apartFace;
-  m.apartFace = kNoApartFace;
+  // The axis that kept the pair apart last time first (Manifold::apartAxis): a face of A, of B
+  // (numbered after A's), or an edge pair (kEdgeNote, A's edge, B's edge). A face gives the answer
+  // the loops below would: they stop at it or before it. An edge pair's axis may be one the pruned
+  // edge search does not try (edges far from the other shape): the pair is then still apart beyond
+  // the margin along it, and no point is made where the faces would have left one within the
+  // margin (see `reach` below).
+  constexpr uint32_t kEdgeNote = 0x40000000u;
+  const uint32_t apart = m.apartAxis;
+  m.apartAxis = kNoApartAxis;
   if (apart < uint32_t(A.numFaces + B.numFaces)) {
     const int f = int(apart);
     if ((f < A.numFaces ? aboveFaceA(f) : aboveFaceB(f - A.numFaces)) > margin) {
-      m.apartFace = apart;
+      m.apartAxis = apart;
       return 0;
+    }
+  }
+  if ((apart & 0xC0000000u) == kEdgeNote) {
+    const int i = int((apart >> 15) & 0x7FFFu), j = int(apart & 0x7FFFu);
+    if (i < A.numEdges && j < B.numEdges) {
+      const Vec3 pa = A.verts[A.edges[i].first];
+      const Vec3 da = A.verts[A.edges[i].second] - pa;
+      const Vec3 db = R * (B.verts[B.edges[j].second] - B.verts[B.edges[j].first]);
+      Vec3 L = da.cross(db);
+      const float l2 = L.squaredNorm();
+      if (l2 >= 1e-8f * da.squaredNorm() * db.squaredNorm()) {  // as the edge search makes it
+        L /= std::sqrt(l2);
+        if (L.dot(pa) < 0.0f) L = -L;
+        if (supportSeparation(vertsA, vertsB, R, t, L) > margin) {
+          m.apartAxis = apart;
+          return 0;
+        }
+      }
     }
   }
   float sepA = -1e30f;
@@ -169,7 +192,7 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
   for (int f = 0; f < A.numFaces; ++f) {
     const float s = aboveFaceA(f);
     if (s > margin) {
-      m.apartFace = uint32_t(f);
+      m.apartAxis = uint32_t(f);
       return 0;
     }
     if (s > sepA) { sepA = s; faceA = f; }
@@ -179,7 +202,7 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
   for (int f = 0; f < B.numFaces; ++f) {
     const float s = aboveFaceB(f);
     if (s > margin) {
-      m.apartFace = uint32_t(A.numFaces + f);
+      m.apartAxis = uint32_t(A.numFaces + f);
       return 0;
     }
     if (s > sepB) { sepB = s; faceB = f; }
@@ -316,7 +339,10 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
           // and over a long edge a tilt of 1e-5 put a hull 6 mm above a 1000 m ground box it rested
           // on: the edge contact won and made one point 250 m away. The supports decide instead.
           s = supportSeparation(vertsA, vertsB, R, t, L);
-          if (s > margin) return false;
+          if (s > margin) {
+            if (i < 0x8000 && gb.edge[k] < 0x8000) m.apartAxis = kEdgeNote | uint32_t(i) << 15 | uint32_t(gb.edge[k]);
+            return false;
+          }
           if (s > sepE) { sepE = s; edgeA = i; edgeB = gb.edge[k]; edgeAxis = L; }
         }
       }

@@ -9,8 +9,8 @@
 namespace haif {
 
 inline constexpr int kMaxManifoldPoints = 4;
-/// Manifold::apartFace when no face is noted.
-inline constexpr uint32_t kNoApartFace = 0xFFFFFFFFu;
+/// Manifold::apartAxis when no axis is noted.
+inline constexpr uint32_t kNoApartAxis = 0xFFFFFFFFu;
 
 struct ContactPoint {
   Vec3 position = Vec3::Zero();  ///< world point midway between the two surfaces
@@ -22,11 +22,11 @@ struct ContactPoint {
 struct Manifold {
   int count = 0;
   ContactPoint points[kMaxManifoldPoints];
-  /// The face whose plane last kept this pair farther apart than the margin, numbered by the pair
-  /// routine that noted it (collidePolyPoly, collideCorePoly), or kNoApartFace. The routine tests it
-  /// first: most pairs the broad phase keeps in a pile are apart, and the same face keeps them apart
-  /// step after step. It only orders the tests, so any value gives the same contacts.
-  uint32_t apartFace = kNoApartFace;
+  /// The axis that last kept this pair farther apart than the margin, numbered by the pair routine
+  /// that noted it (a face; for two polyhedra also an edge pair: collide_polytope.cpp), or
+  /// kNoApartAxis. The routine tests it first: most pairs the broad phase keeps in a pile are apart,
+  /// held apart by the same axis step after step. An axis noted wrongly only costs its test.
+  uint32_t apartAxis = kNoApartAxis;
   /// Depth of the deepest point; 0 when no point overlaps.
   float deepest() const {
     float d = 0.0f;

@@ -174,7 +174,7 @@ void collidePile(benchmark::State& state, Piece a, Piece b) {
 // Most pairs a pile's broad phase keeps are apart: their boxes overlap, the shapes are a little
 // farther apart than the margin. The pile's poses moved kApartGap out from where they touch, each
 // pose with its own manifold as each pair in the world has: `noted` keeps the face a pair routine
-// noted as keeping it apart (Manifold::apartFace) from one visit to the next, `fresh` forgets it.
+// noted as keeping it apart (Manifold::apartAxis) from one visit to the next, `fresh` forgets it.
 constexpr float kApartGap = kMargin + 0.01f;
 void collidePileApart(benchmark::State& state, Piece a, Piece b, bool noted) {
   const std::vector<PosedPair> poses = pilePoses(a, b, 68, -kApartGap);
@@ -182,7 +182,7 @@ void collidePileApart(benchmark::State& state, Piece a, Piece b, bool noted) {
   size_t i = 0;
   int64_t points = 0;
   for (auto _ : state) {
-    if (!noted) ms[i].apartFace = kNoApartFace;
+    if (!noted) ms[i].apartAxis = kNoApartAxis;
     points += collide(a.shape, poses[i].xa, b.shape, poses[i].xb, kMargin, ms[i]);
     benchmark::DoNotOptimize(ms[i]);
     if (++i == poses.size()) i = 0;

@@ -347,10 +347,12 @@ TEST(HullCollision, HullsWithoutParallelEdgesSkipTheSupportingEdgeSearch) {
   EXPECT_GT(edgeContacts, 100);  // and the edge contacts are among the poses compared
 }
 
-// A pair kept apart by a face notes it in its manifold (Manifold::apartFace), and the next collision
-// tests that face first. The note only orders the tests: any value, valid or not, must give the
-// contacts of a manifold without one; and a face noted must keep the pair apart beyond the margin.
-TEST(HullCollision, ApartFaceNotedKeepsThePairApartAndChangesNoContact) {
+// A pair kept apart by an axis notes it in its manifold (Manifold::apartAxis): a face, or for two
+// polyhedra an edge pair. The next collision tests that axis first. A noted axis must keep the pair
+// apart beyond the margin (checked here from the shapes' supports, not by the routine); a face noted
+// gives the contacts of a manifold without a note; an edge pair noted at another pose either changes
+// nothing or holds the pair apart beyond the margin along its axis.
+TEST(HullCollision, ApartAxisNotedKeepsThePairApart) {
   std::mt19937 rng(69);
   std::uniform_real_distribution<float> u(-0.5f, 0.5f);
   std::normal_distribution<float> g(0.0f, 1.0f);
@@ -368,54 +370,74 @@ TEST(HullCollision, ApartFaceNotedKeepsThePairApartAndChangesNoContact) {
   const Shape capsule = Shape::capsule(0.15f, 0.3f), sphere = Shape::sphere(0.25f);
   const std::pair<const Shape*, const Shape*> pairs[] = {{&hullA, &hullB}, {&box, &hullB}, {&hullA, &box},
                                                          {&capsule, &hullB}, {&sphere, &hullA}, {&capsule, &box}};
-  // The polyhedra whose faces a note numbers, in the pair routine's order (collide puts the box
-  // first; a core's routine numbers the polyhedron's faces only).
+  // The polyhedra a note numbers faces and edges of, in the pair routine's order (collide puts the
+  // box first; a core's routine numbers the polyhedron's faces only).
   const detail::BoxPoly boxPoly(box.halfExtents);
-  auto faces = [&](const Shape* s) { return s == &box ? boxPoly.view() : detail::hullView(*s->hull); };
+  auto poly = [&](const Shape* s) { return s == &box ? boxPoly.view() : detail::hullView(*s->hull); };
   auto routineOrder = [&](const Shape* sa, const Shape* sb) -> std::pair<const Shape*, const Shape*> {
     if (sa == &capsule || sa == &sphere) return {sb, nullptr};
     return sb == &box ? std::make_pair(sb, sa) : std::make_pair(sa, sb);
   };
   const float margin = 0.02f;
-  // How far the other shape stays above face f's plane (the routine's numbering), from the shapes'
-  // supports in world space: a noted face must keep the pair apart beyond the margin.
-  auto aboveNotedFace = [&](const Shape* sa, const Transform& xa, const Shape* sb, const Transform& xb, uint32_t f) {
+  // How far apart the two shapes are along the noted axis, from their supports in world space.
+  auto apartAlongNote = [&](const Shape* sa, const Transform& xa, const Shape* sb, const Transform& xb, uint32_t note) {
     const auto [first, second] = routineOrder(sa, sb);
-    const detail::PolyView p1 = faces(first);
-    const bool inFirst = f < uint32_t(p1.numFaces);
+    const Transform& xFirst = first == sa ? xa : xb;
+    auto apartAlong = [&](const Vec3& n) {  // b beyond a along n, or a beyond b
+      return std::max(-supportAlong(*sb, xb, -n) - supportAlong(*sa, xa, n),
+                      -supportAlong(*sa, xa, -n) - supportAlong(*sb, xb, n));
+    };
+    const detail::PolyView p1 = poly(first);
+    if ((note & 0xC0000000u) == 0x40000000u) {  // an edge of the first, an edge of the second
+      const detail::PolyView p2 = poly(second);
+      const Transform& xSecond = second == sa ? xa : xb;
+      const auto e1 = p1.edges[(note >> 15) & 0x7FFFu], e2 = p2.edges[note & 0x7FFFu];
+      const Vec3 d1 = xFirst.q * (p1.verts[e1.second] - p1.verts[e1.first]);
+      const Vec3 d2 = xSecond.q * (p2.verts[e2.second] - p2.verts[e2.first]);
+      return apartAlong(d1.cross(d2).normalized());
+    }
+    const bool inFirst = note < uint32_t(p1.numFaces);
     const Shape* owner = inFirst ? first : second;
-    const Shape* other = owner == sa ? sb : sa;
-    const Transform& xo = owner == sa ? xa : xb;
-    const Transform& xt = owner == sa ? xb : xa;
-    const ConvexHull::Face& F = inFirst ? p1.faces[f] : faces(second).faces[f - uint32_t(p1.numFaces)];
-    const Vec3 n = xo.q * F.normal;
-    return -supportAlong(*other, xt, -n) - (F.offset + n.dot(xo.p));
+    const ConvexHull::Face& F = inFirst ? p1.faces[note] : poly(second).faces[note - uint32_t(p1.numFaces)];
+    return apartAlong((owner == sa ? xa : xb).q * F.normal);
   };
-  int noted = 0, apart = 0, touching = 0;
+  int noted = 0, edgeNotes = 0, apart = 0, touching = 0;
   for (const auto& [sa, sb] : pairs) {
+    std::vector<uint32_t> seenEdgeNotes;
     for (int k = 0; k < 400; ++k) {
       Transform xa, xb;
       xa.q = turn();
       xb.q = turn();
       xa.p = Vec3(u(rng), u(rng), u(rng));
       xb.p = xa.p + Vec3(u(rng), u(rng), u(rng)) * 2.5f;
+      if (k % 2 == 0) {  // as a pile's pairs: out along a random direction to where they touch, then 0-3 cm on
+        const Vec3 d = Vec3(g(rng), g(rng), g(rng)).normalized();
+        float lo = 0.0f, hi = 4.0f;
+        Manifold probe;
+        for (int it = 0; it < 30; ++it) {
+          const float mid = 0.5f * (lo + hi);
+          xb.p = xa.p + mid * d;
+          (collide(*sa, xa, *sb, xb, 0.0f, probe) > 0 ? lo : hi) = mid;
+        }
+        xb.p = xa.p + (hi + 0.03f * (u(rng) + 0.5f)) * d;
+      }
       Manifold fresh;
       const int n = collide(*sa, xa, *sb, xb, margin, fresh);
       touching += n > 0;
       apart += n == 0;
-      if (fresh.apartFace != kNoApartFace) {
+      if (fresh.apartAxis != kNoApartAxis) {
         ++noted;
         EXPECT_EQ(n, 0);
-        EXPECT_GT(aboveNotedFace(sa, xa, sb, xb, fresh.apartFace), margin - 1e-5f);
-        // Noted and collided again at the same poses, and at poses moved a little: the same contacts.
-        Manifold again = fresh;
-        EXPECT_EQ(collide(*sa, xa, *sb, xb, margin, again), 0);
-        EXPECT_EQ(again.apartFace, fresh.apartFace);
+        EXPECT_GT(apartAlongNote(sa, xa, sb, xb, fresh.apartAxis), margin - 1e-5f);
+        if (fresh.apartAxis & 0x40000000u) {
+          ++edgeNotes;
+          seenEdgeNotes.push_back(fresh.apartAxis);
+        }
       }
-      // Any note, for a pose it may not fit: the contacts of a fresh manifold.
-      for (const uint32_t note : {fresh.apartFace, uint32_t(k % 40), uint32_t(k % 7), kNoApartFace, 0x7FFFFFFFu}) {
+      // Faces (and notes naming nothing): the contacts of a fresh manifold.
+      for (const uint32_t note : {fresh.apartAxis, uint32_t(k % 40), uint32_t(k % 7), kNoApartAxis, 0x7FFFFFFFu}) {
         Manifold m;
-        m.apartFace = note;
+        m.apartAxis = note;
         ASSERT_EQ(collide(*sa, xa, *sb, xb, margin, m), n) << "note " << note;
         for (int i = 0; i < n; ++i) {
           EXPECT_EQ(m.points[i].id, fresh.points[i].id);
@@ -423,15 +445,28 @@ TEST(HullCollision, ApartFaceNotedKeepsThePairApartAndChangesNoContact) {
           EXPECT_EQ(m.points[i].position, fresh.points[i].position);
           EXPECT_EQ(m.points[i].normal, fresh.points[i].normal);
         }
-        if (m.apartFace != kNoApartFace) {
-          EXPECT_GT(aboveNotedFace(sa, xa, sb, xb, m.apartFace), margin - 1e-5f);
+        if (m.apartAxis != kNoApartAxis) {
+          EXPECT_GT(apartAlongNote(sa, xa, sb, xb, m.apartAxis), margin - 1e-5f);
         }
+      }
+      // An edge pair noted at another pose: the same contacts, or none because its axis holds the
+      // pair apart beyond the margin here too.
+      if (!seenEdgeNotes.empty()) {
+        Manifold m;
+        m.apartAxis = seenEdgeNotes[size_t(k) % seenEdgeNotes.size()];
+        const int got = collide(*sa, xa, *sb, xb, margin, m);
+        if (got != n) {
+          EXPECT_EQ(got, 0);
+          EXPECT_GT(apartAlongNote(sa, xa, sb, xb, m.apartAxis), margin - 1e-5f);
+        }
+        for (int i = 0; i < got && got == n; ++i) EXPECT_EQ(m.points[i].position, fresh.points[i].position);
       }
     }
   }
-  EXPECT_GT(noted, 600);     // most apart poses are kept apart by a face
+  EXPECT_GT(noted, 600);     // most apart poses are kept apart by a noted axis
+  EXPECT_GT(edgeNotes, 50);  // of them some by an edge pair
   EXPECT_GT(touching, 300);  // and the clipping and closest-feature paths are compared too
-  EXPECT_GT(apart, noted);   // some apart poses are told apart by an edge or the closest features
+  EXPECT_GT(apart, noted);   // some apart poses are told apart by the closest features
 }
 
 }  // namespace
