@@ -106,11 +106,6 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
   const Vec3 c0 = xp.applyInverse(w0), c1 = xp.applyInverse(w1);
   const Vec3 seg = c1 - c0;
   const bool isSeg = seg.squaredNorm() > 1e-12f;
-  // How far the core stays beyond each face plane, the largest kept for the deep case below. The
-  // whole core beyond one by more than r + margin: no point can be within the margin. Most pairs
-  // the broad phase keeps are this far apart, and the closest-feature search costs a pass over
-  // every face and edge. The ends' heights over the face planes are kept (up to kMaxHeights faces)
-  // for the closest-point search below.
   // The face that kept the pair apart last time first (Manifold::apartAxis): the loop below would
   // stop at it or before it, with the same answer.
   auto beyondFace = [&](int f) {
@@ -123,6 +118,11 @@ int collideCorePoly(const Vec3& w0, const Vec3& w1, float r, const PolyView& P, 
     m.apartAxis = apart;
     return 0;
   }
+  // How far the core stays beyond each face plane, the largest kept for the deep case below. The
+  // whole core beyond one by more than r + margin: no point can be within the margin. Most pairs
+  // the broad phase keeps are this far apart, and the closest-feature search costs a pass over
+  // every face and edge. The ends' heights over the face planes are kept (up to kMaxHeights faces)
+  // for the closest-point search below.
   const bool heightsKept = P.numFaces <= kMaxHeights;
   float above[2][kMaxHeights];
   float highest[2] = {-1e30f, -1e30f};  // each end's greatest height; not kept: every face is tried

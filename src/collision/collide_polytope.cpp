@@ -108,7 +108,7 @@ constexpr float kEdgeGapTol = 1e-3f;
 constexpr int kMaxIncident = 64;
 
 // Among the edges parallel to edge e, the one farthest along d (its midpoint). Without parallel edges
-// (most hulls) that is e: the search was a tenth of a pile's hull pair.
+// (most hulls) that is e, and the search is skipped (0.7 % of a hull pour's landing).
 int supportingEdge(const PolyView& P, int e, const Vec3& d) {
   if (!P.parallelEdges) return e;
   const Vec3 dir = (P.verts[P.edges[e].second] - P.verts[P.edges[e].first]).normalized();

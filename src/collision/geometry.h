@@ -60,11 +60,11 @@ inline Vec3 closestOnTriangle(const Vec3& p, const Vec3& a, const Vec3& b, const
   return a + ab * (vb * denom) + ac * (vc * denom);
 }
 
-/// Any unit vector perpendicular-safe fallback used when a direction degenerates.
 /// Edge direction d runs along the unit direction u, to within 1e-3 rad: the edges among which an edge
 /// contact looks for the one that supports its shape (collidePolyPoly).
 inline bool alongEdge(const Vec3& d, const Vec3& u) { return !(d.cross(u).squaredNorm() > 1e-6f * d.squaredNorm()); }
 
+/// Any unit vector perpendicular-safe fallback used when a direction degenerates.
 inline Vec3 safeNormalize(const Vec3& v, const Vec3& fallback) {
   const float l2 = v.squaredNorm();
   return l2 > 1e-20f ? Vec3(v / std::sqrt(l2)) : fallback;
