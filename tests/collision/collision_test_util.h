@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <initializer_list>
+#include <random>
 
 namespace haif {
 namespace test {
@@ -18,6 +19,23 @@ inline Transform xf(const Vec3& p, const Quat& q = Quat::Identity()) {
 }
 
 inline Quat axisAngle(const Vec3& axis, float angle) { return Quat(Eigen::AngleAxisf(angle, axis.normalized())); }
+
+/// A rotation drawn uniformly (a normalised Gaussian quaternion).
+inline Quat randomTurn(std::mt19937& rng) {
+  std::normal_distribution<float> g(0.0f, 1.0f);
+  return Quat(g(rng), g(rng), g(rng), g(rng)).normalized();
+}
+
+/// The same points, bit for bit: ids, depths, positions and normals.
+inline void expectSameContacts(const Manifold& got, const Manifold& want) {
+  ASSERT_EQ(got.count, want.count);
+  for (int i = 0; i < got.count; ++i) {
+    EXPECT_EQ(got.points[i].id, want.points[i].id);
+    EXPECT_EQ(got.points[i].depth, want.points[i].depth);
+    EXPECT_EQ(got.points[i].position, want.points[i].position);
+    EXPECT_EQ(got.points[i].normal, want.points[i].normal);
+  }
+}
 
 /// Index of the manifold point closest to p (or -1).
 inline int findPoint(const Manifold& m, const Vec3& p, float tol) {

@@ -14,17 +14,14 @@
 namespace haif::test {
 namespace {
 
+using test::randomTurn;
+
 Vec3 randomUnit(std::mt19937& rng) {
   std::normal_distribution<float> g(0.0f, 1.0f);
   Vec3 v;
   do v = Vec3(g(rng), g(rng), g(rng));
   while (v.squaredNorm() < 1e-6f);
   return v.normalized();
-}
-
-Quat randomTurn(std::mt19937& rng) {
-  std::normal_distribution<float> g(0.0f, 1.0f);
-  return Quat(g(rng), g(rng), g(rng), g(rng)).normalized();
 }
 
 std::shared_ptr<const ConvexHull> randomHull(std::mt19937& rng, int points, float size) {
