@@ -125,6 +125,17 @@ int supportingEdge(const PolyView& P, int e, const Vec3& d) {
   return best;
 }
 
+// The axis of an edge of A (from its point pa, along da) and an edge along db, turned out of A (its
+// origin is inside it); false for parallel edges.
+bool edgePairAxis(const Vec3& pa, const Vec3& da, const Vec3& db, Vec3& L) {
+  L = da.cross(db);
+  const float l2 = L.squaredNorm();
+  if (l2 < 1e-8f * da.squaredNorm() * db.squaredNorm()) return false;
+  L /= std::sqrt(l2);
+  if (L.dot(pa) < 0.0f) L = -L;
+  return true;
+}
+
 // How far B stays beyond A along L (A's frame; B turned by R and moved by t): negative overlaps.
 float supportSeparation(const VertexLanes& A, const VertexLanes& B, const Mat3& R, const Vec3& t, const Vec3& L) {
   float aLo, aHi;
@@ -175,15 +186,10 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
       const Vec3 pa = A.verts[A.edges[i].first];
       const Vec3 da = A.verts[A.edges[i].second] - pa;
       const Vec3 db = R * (B.verts[B.edges[j].second] - B.verts[B.edges[j].first]);
-      Vec3 L = da.cross(db);
-      const float l2 = L.squaredNorm();
-      if (l2 >= 1e-8f * da.squaredNorm() * db.squaredNorm()) {  // as the edge search makes it
-        L /= std::sqrt(l2);
-        if (L.dot(pa) < 0.0f) L = -L;
-        if (supportSeparation(vertsA, vertsB, R, t, L) > margin) {
-          m.apartAxis = apart;
-          return 0;
-        }
+      Vec3 L;
+      if (edgePairAxis(pa, da, db, L) && supportSeparation(vertsA, vertsB, R, t, L) > margin) {
+        m.apartAxis = apart;
+        return 0;
       }
     }
   }
@@ -326,11 +332,8 @@ int collidePolyPoly(const PolyView& A, const Transform& xa, const PolyView& B, c
         const GaussI cross = (cba * dba < zero) & (adc * bdc < zero) & (cba * bdc > zero);
         for (uint32_t lanes = laneBits(cross); lanes != 0; lanes &= lanes - 1) {
           const int k = j0 + __builtin_ctz(lanes);
-          Vec3 L = da.cross(gb.dir[k]);
-          const float l2 = L.squaredNorm();
-          if (l2 < 1e-8f * da.squaredNorm() * gb.dir[k].squaredNorm()) continue;  // parallel edges
-          L /= std::sqrt(l2);
-          if (L.dot(pa) < 0.0f) L = -L;  // out of A (its origin is inside it)
+          Vec3 L;
+          if (!edgePairAxis(pa, da, gb.dir[k], L)) continue;
           float s = L.dot(gb.p[k] - pa);
           if (s <= sepE && s <= margin) continue;
           // The two edges' lines are this far apart; that is the shapes' separation along L only
